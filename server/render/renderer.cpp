@@ -1,0 +1,213 @@
+#include "render/renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "shared/frame_data.h"
+
+namespace ddgi {
+namespace {
+
+constexpr uint32_t kMaxImageDimension = 16384;
+constexpr uint32_t kMaxTimedPasses = 32;
+
+static_assert(sizeof(gpu::GBufferTexel) == 40);
+static_assert(sizeof(gpu::PrimaryConstants) == 64);
+static_assert(sizeof(gpu::DirectConstants) == 16);
+static_assert(sizeof(gpu::TonemapConstants) == 16);
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+Result<Tonemap> parse_tonemap(const std::string& text) {
+  if (text == "clamp") return Tonemap::kClamp;
+  if (text == "reinhard") return Tonemap::kReinhard;
+  if (text == "aces") return Tonemap::kAces;
+  return invalid_argument("tonemap must be one of clamp, reinhard, aces (got '" + text + "')");
+}
+
+Result<DirectMode> parse_direct_mode(const std::string& text) {
+  if (text == "shadow-rays") return DirectMode::kTracedShadows;
+  if (text == "unshadowed") return DirectMode::kUnshadowed;
+  return invalid_argument("direct mode must be one of shadow-rays, unshadowed (got '" + text +
+                          "')");
+}
+
+Result<View> parse_view(const std::string& text) {
+  if (text == "full") return View::kFull;
+  if (text == "direct") return View::kDirect;
+  if (text == "indirect") return View::kIndirect;
+  if (text == "albedo") return View::kAlbedo;
+  if (text == "normal") return View::kNormal;
+  return invalid_argument("view must be one of full, direct, indirect, albedo, normal (got '" +
+                          text + "')");
+}
+
+Status validate(const FrameSettings& s) {
+  if (s.width < 1 || s.width > kMaxImageDimension || s.height < 1 ||
+      s.height > kMaxImageDimension) {
+    return invalid_argument(
+        "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+        " is out of range: each side must be in [1, " + std::to_string(kMaxImageDimension) + "]");
+  }
+  if (!(s.exposure > 0.0f) || !(s.exposure <= 1e9f)) {
+    return invalid_argument("exposure must be in (0, 1e9] (got " + std::to_string(s.exposure) +
+                            ")");
+  }
+  const Camera& c = s.camera;
+  if (!finite(c.position) || !finite(c.forward) || !finite(c.up)) {
+    return invalid_argument("camera position, forward and up must be finite");
+  }
+  if (glm::length(c.forward) < 1e-6f || glm::length(glm::cross(c.forward, c.up)) < 1e-6f) {
+    return invalid_argument("camera forward must be non-zero and not parallel to up");
+  }
+  if (!(c.yfov > 0.0f) || !(c.yfov < 3.1241f)) {
+    return invalid_argument("camera vertical field of view must be in (0, 179] degrees");
+  }
+  if (!(c.znear >= 0.0f) || !std::isfinite(c.znear)) {
+    return invalid_argument("camera near distance must be finite and >= 0");
+  }
+  return ok_status();
+}
+
+CameraBasis camera_basis(const Camera& camera, uint32_t width, uint32_t height) {
+  CameraBasis b;
+  b.position = camera.position;
+  b.forward = glm::normalize(camera.forward);
+  const glm::vec3 right = glm::normalize(glm::cross(b.forward, camera.up));
+  const glm::vec3 up = glm::cross(right, b.forward);
+  const float tan_half = std::tan(camera.yfov * 0.5f);
+  const float aspect = float(width) / float(height);
+  b.right = right * tan_half * aspect;
+  b.up = up * tan_half;
+  return b;
+}
+
+Result<std::unique_ptr<Renderer>> Renderer::create(vk::Context& context, GpuScene& scene,
+                                                   vk::TraceBackend backend) {
+  DDGI_TRY(context.check_backend(backend));
+  std::unique_ptr<Renderer> renderer(new Renderer(context, scene));
+  renderer->backend_ = backend;
+  DDGI_TRY(renderer->create_kernels());
+  DDGI_ASSIGN_OR_RETURN(renderer->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
+  return renderer;
+}
+
+Status Renderer::create_kernels() {
+  DDGI_ASSIGN_OR_RETURN(frame_layout_, vk::DescriptorLayout::create(context_,
+                                                                    {{gpu::kFrameBindingGBuffer},
+                                                                     {gpu::kFrameBindingRadiance},
+                                                                     {gpu::kFrameBindingLdr}},
+                                                                    1, "frame set"));
+  DDGI_ASSIGN_OR_RETURN(frame_set_, frame_layout_.allocate());
+  const std::vector<VkDescriptorSetLayout> layouts = {scene_.layout(), frame_layout_.handle()};
+  DDGI_ASSIGN_OR_RETURN(
+      primary_, vk::Kernel::create(
+                    context_, {"primary", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
+  DDGI_ASSIGN_OR_RETURN(
+      direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
+                                  backend_));
+  DDGI_ASSIGN_OR_RETURN(
+      tonemap_,
+      vk::Kernel::create(context_, {"tonemap", false, layouts, sizeof(gpu::TonemapConstants)},
+                         backend_));
+  return ok_status();
+}
+
+Status Renderer::resize(uint32_t width, uint32_t height) {
+  if (width == width_ && height == height_) return ok_status();
+  const VkDeviceSize pixels = VkDeviceSize(width) * height;
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  // Drop the old buffers first so the budget sees only the new ones.
+  gbuffer_.reset();
+  radiance_.reset();
+  ldr_.reset();
+  radiance_readback_.reset();
+  ldr_readback_.reset();
+  width_ = height_ = 0;
+  DDGI_ASSIGN_OR_RETURN(gbuffer_,
+                        vk::Buffer::create(context_, pixels * sizeof(gpu::GBufferTexel), usage,
+                                           vk::MemoryUsage::kDeviceLocal, "gbuffer"));
+  DDGI_ASSIGN_OR_RETURN(radiance_, vk::Buffer::create(context_, pixels * 16, usage,
+                                                      vk::MemoryUsage::kDeviceLocal, "radiance"));
+  DDGI_ASSIGN_OR_RETURN(
+      ldr_, vk::Buffer::create(context_, pixels * 4, usage, vk::MemoryUsage::kDeviceLocal, "ldr"));
+  DDGI_ASSIGN_OR_RETURN(radiance_readback_,
+                        vk::Buffer::create(context_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "radiance readback"));
+  DDGI_ASSIGN_OR_RETURN(ldr_readback_,
+                        vk::Buffer::create(context_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "ldr readback"));
+  vk::DescriptorWriter(frame_set_)
+      .buffer(gpu::kFrameBindingGBuffer, gbuffer_)
+      .buffer(gpu::kFrameBindingRadiance, radiance_)
+      .buffer(gpu::kFrameBindingLdr, ldr_)
+      .apply(context_.device());
+  width_ = width;
+  height_ = height;
+  return ok_status();
+}
+
+Result<FrameResult> Renderer::render(const FrameSettings& settings) {
+  DDGI_TRY(validate(settings));
+  DDGI_TRY(resize(settings.width, settings.height));
+  const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
+
+  gpu::PrimaryConstants primary{};
+  primary.camera_position = basis.position;
+  primary.camera_forward = basis.forward;
+  primary.camera_right = basis.right;
+  primary.camera_up = basis.up;
+  primary.width = settings.width;
+  primary.height = settings.height;
+  primary.tmin = settings.camera.znear;
+  primary.tmax = 1e30f;
+  const gpu::DirectConstants direct{settings.width, settings.height,
+                                    static_cast<uint32_t>(settings.direct_mode),
+                                    static_cast<uint32_t>(settings.view)};
+  const gpu::TonemapConstants tonemap{settings.width, settings.height,
+                                      static_cast<uint32_t>(settings.tonemap), settings.exposure};
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), frame_set_};
+  const glm::uvec3 size{settings.width, settings.height, 1};
+
+  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    timer_.begin_frame(cmd);
+    timer_.begin_pass(cmd, "primary");
+    primary_.dispatch(cmd, sets, &primary, size);
+    timer_.end_pass(cmd);
+    vk::barrier_all(cmd);
+    timer_.begin_pass(cmd, "direct");
+    direct_.dispatch(cmd, sets, &direct, size);
+    timer_.end_pass(cmd);
+    vk::barrier_all(cmd);
+    timer_.begin_pass(cmd, "tonemap");
+    tonemap_.dispatch(cmd, sets, &tonemap, size);
+    timer_.end_pass(cmd);
+    vk::barrier_all(cmd);
+    timer_.begin_pass(cmd, "readback");
+    VkBufferCopy radiance_copy{0, 0, radiance_.size()};
+    vkCmdCopyBuffer(cmd, radiance_.handle(), radiance_readback_.handle(), 1, &radiance_copy);
+    VkBufferCopy ldr_copy{0, 0, ldr_.size()};
+    vkCmdCopyBuffer(cmd, ldr_.handle(), ldr_readback_.handle(), 1, &ldr_copy);
+    timer_.end_pass(cmd);
+  }));
+
+  FrameResult result;
+  result.width = settings.width;
+  result.height = settings.height;
+  const size_t pixels = size_t(settings.width) * settings.height;
+  result.radiance.resize(pixels * 4);
+  std::memcpy(result.radiance.data(), radiance_readback_.mapped(), pixels * 16);
+  result.ldr.resize(pixels * 4);
+  std::memcpy(result.ldr.data(), ldr_readback_.mapped(), pixels * 4);
+  DDGI_ASSIGN_OR_RETURN(result.pass_times, timer_.read());
+  result.frame_index = frame_index_++;
+  context_.collect_garbage();
+  return result;
+}
+
+}  // namespace ddgi

@@ -1,0 +1,142 @@
+// The Vulkan instance, one physical device, one queue: everything GPU work needs to start.
+// Works headless (no surface, no window system) on lavapipe and on NVIDIA GPUs.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "core/result.h"
+
+namespace ddgi::vk {
+
+// How rays are traced: inline ray queries in compute shaders, or ray-tracing pipelines.
+enum class TraceBackend { kRayQuery, kPipeline };
+const char* backend_name(TraceBackend backend);
+// Parses "query" / "pipeline"; "auto" returns nullopt (choose from the device).
+Result<std::optional<TraceBackend>> parse_backend(const std::string& text);
+
+struct DeviceCapabilities {
+  std::string device_name;
+  std::string driver_name;
+  uint32_t vendor_id = 0;
+  uint32_t api_version = 0;
+  bool acceleration_structure = false;
+  bool ray_query = false;
+  bool ray_tracing_pipeline = false;
+  bool buffer_device_address = false;
+  float timestamp_period_ns = 1.0f;
+  bool timestamps = false;
+  uint64_t device_local_bytes = 0;
+  uint32_t min_scratch_alignment = 256;
+  uint32_t shader_group_handle_size = 0;
+  uint32_t shader_group_base_alignment = 0;
+  uint32_t shader_group_handle_alignment = 0;
+  uint32_t max_ray_recursion_depth = 0;
+  uint32_t max_compute_workgroup_count_x = 65535;
+};
+
+struct ContextOptions {
+  bool validation = false;              // VK_LAYER_KHRONOS_validation; always on in tests
+  std::string device_filter;            // substring of the device name; empty: best device
+  std::optional<TraceBackend> backend;  // forced backend; nullopt: ray queries when present
+  uint64_t memory_budget_bytes = 0;     // 0: no budget beyond the device's own limit
+};
+
+// Extension entry points that the loader does not export.
+struct DeviceFunctions {
+  PFN_vkCreateAccelerationStructureKHR vkCreateAccelerationStructureKHR = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR vkDestroyAccelerationStructureKHR = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR vkGetAccelerationStructureBuildSizesKHR = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR vkCmdBuildAccelerationStructuresKHR = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR vkGetAccelerationStructureDeviceAddressKHR =
+      nullptr;
+  PFN_vkCreateRayTracingPipelinesKHR vkCreateRayTracingPipelinesKHR = nullptr;
+  PFN_vkGetRayTracingShaderGroupHandlesKHR vkGetRayTracingShaderGroupHandlesKHR = nullptr;
+  PFN_vkCmdTraceRaysKHR vkCmdTraceRaysKHR = nullptr;
+  PFN_vkSetDebugUtilsObjectNameEXT vkSetDebugUtilsObjectNameEXT = nullptr;
+  PFN_vkCmdBeginDebugUtilsLabelEXT vkCmdBeginDebugUtilsLabelEXT = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT vkCmdEndDebugUtilsLabelEXT = nullptr;
+};
+
+class Context {
+ public:
+  static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical_device() const { return physical_device_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+  const DeviceCapabilities& caps() const { return caps_; }
+  const DeviceFunctions& fn() const { return fn_; }
+  TraceBackend default_backend() const { return default_backend_; }
+  // Errors when the device cannot run `backend`, naming the missing feature.
+  Status check_backend(TraceBackend backend) const;
+
+  // Debug names show up in validation messages and GPU debuggers.
+  void set_name(uint64_t handle, VkObjectType type, const std::string& name) const;
+
+  // Records `record` into a one-shot command buffer, submits it and waits for it.
+  Status submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+
+  // Deferred destruction: `destroy` runs once the GPU has finished every submission made
+  // before this call. Objects can be dropped at any time without waiting for the GPU.
+  void defer_destroy(std::function<void()> destroy);
+  // Runs the deferred destructions whose submissions have completed.
+  void collect_garbage();
+
+  // Device memory accounting against the budget (RESOURCE_EXHAUSTED beyond it).
+  Status reserve_memory(uint64_t bytes, const std::string& what);
+  void release_memory(uint64_t bytes);
+  uint64_t allocated_bytes() const { return allocated_bytes_.load(); }
+  uint64_t memory_budget() const { return memory_budget_; }
+  Result<uint32_t> find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
+                                    VkMemoryPropertyFlags preferred = 0) const;
+
+  // Validation messages (warnings and errors) seen since creation; tests require zero.
+  uint32_t validation_message_count() const { return validation_messages_.load(); }
+  bool validation_enabled() const { return validation_enabled_; }
+
+ private:
+  Context() = default;
+  Status init(const ContextOptions& options);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(
+      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  DeviceCapabilities caps_;
+  DeviceFunctions fn_;
+  TraceBackend default_backend_ = TraceBackend::kRayQuery;
+  bool validation_enabled_ = false;
+  std::atomic<uint32_t> validation_messages_{0};
+
+  std::mutex submit_mutex_;
+  uint64_t submitted_serial_ = 0;
+  uint64_t completed_serial_ = 0;
+  std::mutex garbage_mutex_;
+  std::deque<std::pair<uint64_t, std::function<void()>>> garbage_;
+
+  std::atomic<uint64_t> allocated_bytes_{0};
+  uint64_t memory_budget_ = 0;
+};
+
+}  // namespace ddgi::vk

@@ -1,0 +1,43 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Direct light at each primary hit: punctual lights with traced shadow rays (or none), plus
+// what the surface emits. Writes linear HDR radiance.
+#include "common/lights.glsl"
+#include "common/gbuffer.glsl"
+
+layout(push_constant, scalar) uniform Push { DirectConstants pc; };
+layout(set = kFrameSet, binding = kFrameBindingGBuffer, scalar) readonly buffer GBuffer {
+  GBufferTexel gbuffer[];
+};
+layout(set = kFrameSet, binding = kFrameBindingRadiance, scalar) writeonly buffer Radiance {
+  vec4 radiance[];
+};
+
+void main() {
+  const uvec2 pixel = DDGI_INVOCATION_ID.xy;
+  if (pixel.x >= pc.width || pixel.y >= pc.height) return;
+  const uint index = pixel.y * pc.width + pixel.x;
+  const GBufferTexel texel = gbuffer[index];
+  const uint flags = unpack_gbuffer_flags(texel.albedo_flags);
+  vec3 result = texel.emission;
+  if ((flags & kGBufferHit) != 0u) {
+    Surface s;
+    s.position = texel.position;
+    s.normal = unpack_normal(texel.normal_oct);
+    s.geometric_normal = unpack_normal(texel.geometric_normal_oct);
+    s.albedo = unpack_albedo(texel.albedo_flags);
+    s.front_face = (flags & kGBufferFrontFace) != 0u;
+    Rng rng = rng_seed(pixel.x, pixel.y, 0x9e3779b9u);
+    const vec3 direct = direct_lighting(s, pc.mode == kDirectTracedShadows, rng);
+    if (pc.view == kViewAlbedo) {
+      result = s.albedo;
+    } else if (pc.view == kViewNormal) {
+      result = s.normal * 0.5 + 0.5;
+    } else if (pc.view == kViewIndirect) {
+      result = vec3(0.0);
+    } else {
+      result += direct;
+    }
+  }
+  radiance[index] = vec4(sanitize_radiance(result), 1.0);
+}

@@ -1,0 +1,98 @@
+// The scene as the GPU sees it: descriptor set 0 of every tracing kernel.
+// Storage buffers use scalar layout (GL_EXT_scalar_block_layout), so C++ structs match
+// member for member with no padding rules beyond C's own.
+#ifndef DDGI_SHARED_SCENE_DATA_H
+#define DDGI_SHARED_SCENE_DATA_H
+
+#include "shared/interop.h"
+
+DDGI_NAMESPACE_BEGIN
+
+// Descriptor set 0 bindings.
+DDGI_CONST uint kSceneBindingTlas = 0;
+DDGI_CONST uint kSceneBindingPositions = 1;  // vec3 per vertex (also the BLAS input)
+DDGI_CONST uint kSceneBindingAttributes = 2;  // VertexAttributes per vertex
+DDGI_CONST uint kSceneBindingIndices = 3;     // uint per triangle corner
+DDGI_CONST uint kSceneBindingGeometries = 4;  // GpuGeometry per BLAS geometry
+DDGI_CONST uint kSceneBindingInstances = 5;   // GpuInstance per TLAS instance
+DDGI_CONST uint kSceneBindingMaterials = 6;   // GpuMaterial
+DDGI_CONST uint kSceneBindingLights = 7;      // GpuLight
+DDGI_CONST uint kSceneBindingGlobals = 8;     // SceneGlobals (one)
+DDGI_CONST uint kSceneBindingEnvironment = 9; // equirectangular map (RGBA32F)
+DDGI_CONST uint kSceneBindingTextures = 10;   // variable-sized array, last binding
+
+DDGI_CONST uint kSceneSet = 0;
+
+// GpuGeometry::flags
+DDGI_CONST uint kGeometryAlphaMask = 1u;      // cut out where alpha < cutoff (any-hit)
+DDGI_CONST uint kGeometryTransmissive = 2u;   // thin glass: never an occluder, tints rays
+DDGI_CONST uint kGeometryHasNormals = 4u;     // else shade with the face normal
+DDGI_CONST uint kGeometryDoubleSided = 8u;    // back faces shade as front faces
+
+struct VertexAttributes {
+  vec3 normal;
+  vec2 uv;
+};
+
+struct GpuGeometry {
+  uint first_index;    // into the index buffer
+  uint first_vertex;   // added to every index
+  uint material;       // index into materials
+  uint flags;
+};
+
+struct GpuInstance {
+  mat4 object_to_world;
+  mat4 normal_to_world;  // inverse transpose of the upper 3x3, in a mat4 for alignment
+  uint first_geometry;   // this mesh's geometry 0 in the geometry table
+  uint mesh;
+  uint pad0;
+  uint pad1;
+};
+
+struct GpuMaterial {
+  vec4 base_color;         // linear RGBA
+  vec3 emissive;           // linear radiance (factor x strength)
+  int base_color_texture;  // -1: none
+  int emissive_texture;    // -1: none
+  float alpha_cutoff;
+  float transmission;      // thin glass: rays pass, tinted by transmission x base colour
+  uint pad0;
+};
+
+DDGI_CONST uint kLightPoint = 0u;
+DDGI_CONST uint kLightSpot = 1u;
+DDGI_CONST uint kLightDirectional = 2u;
+
+struct GpuLight {
+  vec3 position;
+  uint type;
+  vec3 direction;       // the direction light travels (towards the scene for directional)
+  float range;          // 0: infinite
+  vec3 radiance;        // colour x intensity (W/sr for point/spot, W/m^2 for directional)
+  float spot_scale;     // 1 / max(cos(inner) - cos(outer), 1e-4)
+  float spot_offset;    // -cos(outer) * spot_scale
+  float radius;         // sphere light radius (0: a point)
+  float pad0;
+  float pad1;
+};
+
+struct SceneGlobals {
+  vec3 environment_color;     // constant environment radiance (x intensity)
+  uint environment_has_map;   // 1: sample the map, times environment_intensity
+  float environment_intensity;
+  float environment_rotation; // radians about +Y
+  uint light_count;
+  uint flags;                 // kSceneHas* below
+  vec3 bounds_min;
+  float scene_scale;          // length of the bounds' diagonal (ray offsets scale with it)
+  vec3 bounds_max;
+  float ray_epsilon;          // offset along the normal for secondary rays
+};
+
+DDGI_CONST uint kSceneHasAlphaMask = 1u;
+DDGI_CONST uint kSceneHasTransmission = 2u;
+
+DDGI_NAMESPACE_END
+
+#endif
