@@ -1,0 +1,45 @@
+// The two in-memory image types the encoders accept: 8-bit display images (what a viewer sees)
+// and linear float images (what the renderer computes, before exposure and tone mapping).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace ddgi::encode {
+
+// sRGB-encoded RGBA, 4 bytes per pixel, row-major, top row first.
+struct ImageRgba8 {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> pixels;
+};
+
+// Linear (scene-referred) RGB, 3 floats per pixel, row-major, top row first. Values may exceed
+// 1 (HDR); they are not clamped until something converts them for display.
+struct ImageRgbF {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<float> rgb;
+};
+
+// "640x480", the form every size-related error message uses.
+std::string size_string(uint32_t width, uint32_t height);
+
+// Non-empty and the buffer holds exactly width * height pixels.
+Status validate(const ImageRgba8& image);
+Status validate(const ImageRgbF& image);
+
+// The sRGB transfer function (IEC 61966-2-1), both directions, on values in [0,1].
+float srgb_to_linear(float encoded);
+float linear_to_srgb(float linear);
+
+// Linear -> 8-bit sRGB with no tone mapping: values are clamped to [0,1] (NaN becomes 0), so
+// apply exposure or a tone curve first if the image is HDR. Alpha is 255.
+ImageRgba8 to_srgb8(const ImageRgbF& image);
+// 8-bit sRGB -> linear float, exact inverse of the transfer function; alpha is dropped.
+ImageRgbF to_linear(const ImageRgba8& image);
+
+}  // namespace ddgi::encode

@@ -1,0 +1,81 @@
+#include "encode/jpeg.h"
+
+#include <turbojpeg.h>
+
+#include <memory>
+#include <string>
+
+namespace ddgi::encode {
+
+namespace {
+
+struct TjDestroyer {
+  void operator()(void* handle) const { tjDestroy(handle); }
+};
+using TjHandle = std::unique_ptr<void, TjDestroyer>;
+
+// Frees the buffer TurboJPEG allocates for compressed output.
+struct TjFreer {
+  void operator()(unsigned char* buffer) const { tjFree(buffer); }
+};
+
+// JPEG stores dimensions in 16 bits.
+constexpr uint32_t kMaxJpegDimension = 65535;
+
+}  // namespace
+
+Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality, JpegChroma chroma) {
+  if (quality < 1 || quality > 100) {
+    return invalid_argument("JPEG quality must be in 1..100, got " + std::to_string(quality));
+  }
+  DDGI_TRY(validate(image));
+  if (image.width > kMaxJpegDimension || image.height > kMaxJpegDimension) {
+    return invalid_argument("JPEG cannot hold a " + size_string(image.width, image.height) +
+                            " image (65535 pixels per side at most)");
+  }
+  TjHandle handle(tjInitCompress());
+  if (!handle)
+    return internal_error(std::string("tjInitCompress failed: ") + tjGetErrorStr2(nullptr));
+
+  unsigned char* raw_output = nullptr;
+  unsigned long output_size = 0;
+  const int subsampling = chroma == JpegChroma::k444 ? TJSAMP_444 : TJSAMP_420;
+  const int status = tjCompress2(handle.get(), image.pixels.data(), static_cast<int>(image.width),
+                                 0, static_cast<int>(image.height), TJPF_RGBA, &raw_output,
+                                 &output_size, subsampling, quality, 0);
+  std::unique_ptr<unsigned char, TjFreer> output(raw_output);
+  if (status != 0) {
+    return internal_error(std::string("JPEG encoding failed: ") + tjGetErrorStr2(handle.get()));
+  }
+  return std::vector<uint8_t>(output.get(), output.get() + output_size);
+}
+
+Result<ImageRgba8> decode_jpeg(std::span<const uint8_t> bytes) {
+  if (bytes.empty()) return invalid_argument("JPEG data is empty");
+  TjHandle handle(tjInitDecompress());
+  if (!handle) {
+    return internal_error(std::string("tjInitDecompress failed: ") + tjGetErrorStr2(nullptr));
+  }
+  int width = 0;
+  int height = 0;
+  int subsampling = 0;
+  int colorspace = 0;
+  if (tjDecompressHeader3(handle.get(), bytes.data(), bytes.size(), &width, &height, &subsampling,
+                          &colorspace) != 0) {
+    return invalid_argument(std::string("not a readable JPEG: ") + tjGetErrorStr2(handle.get()));
+  }
+  if (width <= 0 || height <= 0) return invalid_argument("JPEG header has an empty image");
+  if (uint64_t(width) * uint64_t(height) > kMaxDecodePixels) {
+    return resource_exhausted("JPEG is " + size_string(uint32_t(width), uint32_t(height)) +
+                              ", over the decoder's pixel limit");
+  }
+  ImageRgba8 image{uint32_t(width), uint32_t(height), {}};
+  image.pixels.resize(size_t(width) * size_t(height) * 4);
+  if (tjDecompress2(handle.get(), bytes.data(), bytes.size(), image.pixels.data(), width, 0, height,
+                    TJPF_RGBA, 0) != 0) {
+    return invalid_argument(std::string("JPEG decoding failed: ") + tjGetErrorStr2(handle.get()));
+  }
+  return image;
+}
+
+}  // namespace ddgi::encode
