@@ -1,0 +1,201 @@
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "metrics/color.h"
+#include "metrics/colormap.h"
+#include "metrics/flip.h"
+#include "test_images.h"
+
+namespace ddgi::metrics {
+namespace {
+
+using test::constant_image;
+using test::TestImage;
+
+// Published CIELAB (D65) coordinates of the sRGB primaries and white, from any colour table;
+// independent of our code, so they check the sRGB -> XYZ -> L*a*b* chain.
+struct LabReference {
+  Color3 linear_rgb;
+  Color3 lab;
+};
+constexpr LabReference kLabReferences[] = {
+    {{1.0, 1.0, 1.0}, {100.0, 0.0, 0.0}},
+    {{1.0, 0.0, 0.0}, {53.2408, 80.0925, 67.2032}},
+    {{0.0, 1.0, 0.0}, {87.7347, -86.1827, 83.1793}},
+    {{0.0, 0.0, 1.0}, {32.2970, 79.1875, -107.8602}},
+};
+
+// The paper's colour-error re-mapping, written out again from the published Lab values above:
+// cmax = HyAB(Hunt(green), Hunt(blue))^0.7, then linear to 0.95 at 0.4 cmax, linear beyond.
+double expected_flat_error(double hyab_distance) {
+  const auto hunt = [](const Color3& lab) {
+    return Color3{lab.c0, lab.c1 * lab.c0 / 100.0, lab.c2 * lab.c0 / 100.0};
+  };
+  const Color3 green = hunt(kLabReferences[2].lab);
+  const Color3 blue = hunt(kLabReferences[3].lab);
+  const double cmax = std::pow(
+      std::abs(green.c0 - blue.c0) + std::hypot(green.c1 - blue.c1, green.c2 - blue.c2), 0.7);
+  const double d = std::pow(hyab_distance, 0.7);
+  const double knee = 0.4 * cmax;
+  return d < knee ? 0.95 * d / knee : 0.95 + 0.05 * (d - knee) / (cmax - knee);
+}
+
+TEST(FlipColor, SrgbPrimariesHaveTheirPublishedLabValues) {
+  for (const LabReference& reference : kLabReferences) {
+    const Color3 lab = xyz_to_lab(linear_rgb_to_xyz(reference.linear_rgb));
+    EXPECT_NEAR(lab.c0, reference.lab.c0, 0.01);
+    EXPECT_NEAR(lab.c1, reference.lab.c1, 0.01);
+    EXPECT_NEAR(lab.c2, reference.lab.c2, 0.01);
+  }
+}
+
+TEST(FlipColor, YcxczRoundTripsAndIsZeroChromaForGrey) {
+  const Color3 xyz = linear_rgb_to_xyz({0.3, 0.6, 0.1});
+  const Color3 back = ycxcz_to_xyz(xyz_to_ycxcz(xyz));
+  EXPECT_NEAR(back.c0, xyz.c0, 1e-12);
+  EXPECT_NEAR(back.c1, xyz.c1, 1e-12);
+  EXPECT_NEAR(back.c2, xyz.c2, 1e-12);
+  const Color3 grey = xyz_to_ycxcz(linear_rgb_to_xyz({0.2, 0.2, 0.2}));
+  EXPECT_NEAR(grey.c1, 0.0, 1e-12);
+  EXPECT_NEAR(grey.c2, 0.0, 1e-12);
+  const Color3 rgb = xyz_to_linear_rgb(xyz);
+  EXPECT_NEAR(rgb.c1, 0.6, 1e-12);
+}
+
+TEST(Flip, IdenticalImagesGiveExactlyZero) {
+  const TestImage a = test::add_noise(test::gradient_image(40, 24), 0.3f);
+  Result<FlipResult> result = flip(a.view(), a.view());
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_EQ(result->mean, 0.0);
+  for (float e : result->error_map) ASSERT_EQ(e, 0.0f);
+}
+
+TEST(Flip, BlackVersusWhiteMatchesTheAnalyticValue) {
+  // Flat images: the CSF filters (normalised) leave them flat and the feature detectors see
+  // nothing, so every pixel's error is the re-mapped colour error of HyAB(black, white) = 100
+  // (L* 0 vs 100, no chroma): 100^0.7 = 25.1 is above the knee 0.4 * cmax = 16.5, giving
+  // 0.95 + 0.05 * (25.1 - 16.5) / (41.3 - 16.5) = 0.9674. Not 1, because green vs blue is the
+  // largest difference FLIP scales to.
+  const TestImage black = constant_image(24, 20, 0.0f, 0.0f, 0.0f);
+  const TestImage white = constant_image(24, 20, 1.0f, 1.0f, 1.0f);
+  Result<FlipResult> result = flip(black.view(), white.view());
+  ASSERT_TRUE(result.ok());
+  const double expected = expected_flat_error(100.0);
+  EXPECT_NEAR(expected, 0.9674, 1e-4);
+  EXPECT_NEAR(result->mean, expected, 1e-4);
+  for (float e : result->error_map) ASSERT_NEAR(e, expected, 1e-4);
+}
+
+TEST(Flip, MidGreyVersusBlackUsesTheLowerBranchOfTheRemap) {
+  // sRGB 0.5 -> linear 0.2140 -> L* 53.389; 53.389^0.7 = 16.18 is just under the knee, so the
+  // error is 0.95 * 16.18 / 16.51 = 0.9315.
+  const TestImage black = constant_image(16, 16, 0.0f, 0.0f, 0.0f);
+  const TestImage grey = constant_image(16, 16, 0.5f, 0.5f, 0.5f);
+  const double lightness = 116.0 * std::cbrt(std::pow((0.5 + 0.055) / 1.055, 2.4)) - 16.0;
+  EXPECT_NEAR(lightness, 53.389, 1e-3);
+  const double expected = expected_flat_error(lightness);
+  EXPECT_NEAR(expected, 0.9315, 1e-4);
+  EXPECT_NEAR(flip(grey.view(), black.view())->mean, expected, 1e-4);
+}
+
+TEST(Flip, MapMatchesImageSizeAndStaysInUnitRange) {
+  const TestImage a = test::gradient_image(33, 17);
+  const TestImage b = test::add_noise(a, 0.5f);
+  Result<FlipResult> result = flip(a.view(), b.view());
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(result->width, 33u);
+  EXPECT_EQ(result->height, 17u);
+  ASSERT_EQ(result->error_map.size(), 33u * 17u);
+  for (float e : result->error_map) {
+    ASSERT_GE(e, 0.0f);
+    ASSERT_LE(e, 1.0f);
+  }
+}
+
+TEST(Flip, ErrorGrowsMonotonicallyWithNoiseAmplitude) {
+  const TestImage base = test::gradient_image(48, 32);
+  double previous = 0.0;
+  for (float amplitude : {0.005f, 0.02f, 0.05f, 0.1f, 0.2f, 0.4f}) {
+    const double mean = flip(base.view(), test::add_noise(base, amplitude).view())->mean;
+    EXPECT_GT(mean, previous) << amplitude;
+    previous = mean;
+  }
+}
+
+TEST(Flip, IsSymmetric) {
+  const TestImage a = test::gradient_image(30, 20);
+  const TestImage b = test::add_noise(a, 0.2f);
+  Result<FlipResult> ab = flip(a.view(), b.view());
+  Result<FlipResult> ba = flip(b.view(), a.view());
+  ASSERT_TRUE(ab.ok() && ba.ok());
+  EXPECT_EQ(ab->error_map, ba->error_map);
+}
+
+TEST(Flip, DistantViewerSeesLessFineNoise) {
+  // Same pixel noise, more pixels per degree: the CSF blurs more of it away.
+  const TestImage base = constant_image(48, 48, 0.5f, 0.5f, 0.5f);
+  const TestImage noisy = test::add_noise(base, 0.2f);
+  double previous = 1.0;
+  for (double ppd : {10.0, 30.0, 67.0, 150.0}) {
+    const double mean = flip(base.view(), noisy.view(), {.pixels_per_degree = ppd})->mean;
+    EXPECT_LT(mean, previous) << ppd;
+    previous = mean;
+  }
+}
+
+TEST(Flip, ErrorStaysLocalToTheChange) {
+  // One pixel changed: beyond the widest filter reach (CSF 10 px, features 9 px at 67 ppd, so
+  // 20 px counting both images' filters) nothing differs and the error is exactly 0.
+  const TestImage a = constant_image(64, 64, 0.4f, 0.5f, 0.6f);
+  TestImage b = a;
+  for (uint32_t c = 0; c < 3; ++c) b.at(32, 32, c) = 1.0f;
+  Result<FlipResult> result = flip(a.view(), b.view());
+  ASSERT_TRUE(result.ok());
+  EXPECT_GT(result->error_map[32 * 64 + 32], 0.1f);
+  EXPECT_EQ(result->error_map[32 * 64 + 5], 0.0f);
+  EXPECT_EQ(result->error_map[5 * 64 + 32], 0.0f);
+  EXPECT_EQ(result->error_map[60 * 64 + 60], 0.0f);
+  // And the peak is at the changed pixel.
+  const auto peak = std::max_element(result->error_map.begin(), result->error_map.end());
+  EXPECT_EQ(peak - result->error_map.begin(), 32 * 64 + 32);
+}
+
+TEST(Flip, RejectsMismatchedSizesAndBadPpd) {
+  const TestImage a = constant_image(64, 48, 0.5f, 0.5f, 0.5f);
+  const TestImage b = constant_image(32, 32, 0.5f, 0.5f, 0.5f);
+  Result<FlipResult> mismatch = flip(a.view(), b.view());
+  ASSERT_FALSE(mismatch.ok());
+  EXPECT_NE(mismatch.error().message.find("64x48 vs 32x32"), std::string::npos);
+  for (double ppd : {0.0, -1.0, 5000.0, std::nan("")}) {
+    EXPECT_FALSE(flip(a.view(), a.view(), {.pixels_per_degree = ppd}).ok()) << ppd;
+  }
+}
+
+TEST(Flip, PixelsPerDegreeOfThePaperSetup) {
+  EXPECT_NEAR(pixels_per_degree(0.7, 3840.0, 0.7), 3840.0 * std::numbers::pi / 180.0, 1e-9);
+  EXPECT_NEAR(pixels_per_degree(0.7, 3840.0, 0.7), 67.02, 0.01);
+}
+
+TEST(ErrorColormap, LightnessRisesMonotonicallyFromDarkToBright) {
+  double previous = -1.0;
+  for (int i = 0; i <= 100; ++i) {
+    const auto color = error_color(float(i) / 100.0f);
+    const double luma = 0.2126 * color[0] + 0.7152 * color[1] + 0.0722 * color[2];
+    EXPECT_GT(luma, previous) << i;
+    previous = luma;
+  }
+  EXPECT_LT(0.2126 * error_color(0.0f)[0] + 0.7152 * error_color(0.0f)[1], 5.0);
+  EXPECT_GT(error_color(1.0f)[1], 240);
+  EXPECT_EQ(error_color(-3.0f), error_color(0.0f));
+  EXPECT_EQ(error_color(7.0f), error_color(1.0f));
+  EXPECT_EQ(error_color(std::nanf("")), error_color(0.0f));
+  const float errors[] = {0.0f, 0.5f, 1.0f};
+  const std::vector<uint8_t> pixels = colorize_errors(errors);
+  ASSERT_EQ(pixels.size(), 12u);
+  EXPECT_EQ(pixels[7], 255);
+}
+
+}  // namespace
+}  // namespace ddgi::metrics
