@@ -1,0 +1,198 @@
+#include "scene/gltf_parse.h"
+
+#include <optional>
+#include <string>
+
+#include "scene/accessor_reader.h"
+#include "scene/glb_container.h"
+#include "scene/image_decode.h"
+#include "scene/json_nesting.h"
+
+namespace ddgi {
+namespace {
+
+// tinygltf reports through C-style callbacks; this keeps the first real error with its code.
+struct ParseContext {
+  const SceneFolder* folder = nullptr;
+  // tinygltf joins this base folder with each URI; what follows it is the URI itself.
+  std::string base_prefix;
+  uint64_t max_file_bytes = 0;
+  uint32_t max_texture_dimension = 0;
+  const tinygltf::Model* model = nullptr;  // buffers and views are parsed before images
+  std::optional<Error> first_error;
+
+  void note(Error error) {
+    if (!first_error) first_error = std::move(error);
+  }
+  // The URI inside a path tinygltf built; nullopt for its fallback guesses relative to the
+  // process's working directory, which are never allowed.
+  std::optional<std::string> uri_of(const std::string& path) const {
+    if (path.compare(0, base_prefix.size(), base_prefix) != 0) return std::nullopt;
+    return path.substr(base_prefix.size());
+  }
+};
+
+std::string expand_file_path(const std::string& path, void*) {
+  return path;
+}
+
+bool file_exists(const std::string& path, void* user) {
+  auto* ctx = static_cast<ParseContext*>(user);
+  const std::optional<std::string> uri = ctx->uri_of(path);
+  if (!uri) return false;
+  Result<std::filesystem::path> resolved = ctx->folder->resolve(*uri);
+  if (!resolved.ok()) {
+    ctx->note(resolved.error());
+    return false;
+  }
+  return true;
+}
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void* user) {
+  auto* ctx = static_cast<ParseContext*>(user);
+  const std::optional<std::string> uri = ctx->uri_of(path);
+  if (!uri) {
+    *err = "refused";
+    return false;
+  }
+  Result<std::filesystem::path> resolved = ctx->folder->resolve(*uri);
+  if (!resolved.ok()) {
+    ctx->note(resolved.error());
+    *err = resolved.error().message;
+    return false;
+  }
+  Result<std::vector<uint8_t>> bytes = read_file(*resolved, ctx->max_file_bytes);
+  if (!bytes.ok()) {
+    ctx->note(bytes.error().with_context("uri '" + *uri + "'"));
+    *err = bytes.error().message;
+    return false;
+  }
+  *out = std::move(bytes).value();
+  return true;
+}
+
+bool write_whole_file(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                      void*) {
+  *err = "the scene loader never writes files";
+  return false;
+}
+
+std::string image_label(const tinygltf::Image& image, int index) {
+  std::string label = "images[" + std::to_string(index) + "]";
+  if (!image.name.empty()) label += " '" + image.name + "'";
+  return label;
+}
+
+// tinygltf's image callback: check the header, keep the bytes; decoding waits until we know
+// which images the scene uses.
+bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* err, std::string*,
+                        int, int, const unsigned char* bytes, int size, void* user) {
+  auto* ctx = static_cast<ParseContext*>(user);
+  const std::string label = image_label(*image, index);
+  std::span<const uint8_t> encoded;
+  if (image->bufferView != -1) {
+    // tinygltf hands over a pointer without checking the view's range against the buffer.
+    Result<std::span<const uint8_t>> view = buffer_view_bytes(*ctx->model, image->bufferView);
+    if (!view.ok()) {
+      ctx->note(view.error().with_context(label));
+      *err += label + ": " + view.error().message + "\n";
+      return false;
+    }
+    encoded = *view;
+  } else {
+    if (bytes == nullptr || size <= 0) {
+      ctx->note(invalid_argument(label + ": empty or oversized image data"));
+      *err += label + ": empty or oversized image data\n";
+      return false;
+    }
+    encoded = std::span<const uint8_t>(bytes, static_cast<size_t>(size));
+  }
+  Result<ImageSize> probed = probe_image(encoded, ctx->max_texture_dimension);
+  if (!probed.ok()) {
+    ctx->note(probed.error().with_context(label));
+    *err += label + ": " + probed.error().message + "\n";
+    return false;
+  }
+  image->image.assign(encoded.begin(), encoded.end());
+  image->as_is = true;
+  image->width = static_cast<int>(probed->width);
+  image->height = static_cast<int>(probed->height);
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  return true;
+}
+
+std::string trim(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+// Every image must have arrived: tinygltf only warns when an image file is missing.
+Status check_images_loaded(const tinygltf::Model& model, const ParseContext& ctx) {
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    const tinygltf::Image& image = model.images[i];
+    if (image.as_is) continue;
+    if (ctx.first_error) return ctx.first_error->with_context(image_label(image, int(i)));
+    return invalid_argument(image_label(image, static_cast<int>(i)) +
+                            ": no image data (neither a loadable uri nor a bufferView)");
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFolder& folder,
+                                   const SceneLimits& limits) {
+  const bool binary = has_glb_magic(bytes);
+  std::span<const uint8_t> json_text = bytes;
+  if (binary) {
+    DDGI_ASSIGN_OR_RETURN(const GlbChunks chunks, parse_glb_container(bytes));
+    json_text = chunks.json;
+  }
+  if (json_text.size() < 2) return invalid_argument("the file is too short to be glTF");
+  DDGI_TRY(check_json_nesting(json_text, limits.max_json_depth));
+
+  ParseContext ctx;
+  ctx.folder = &folder;
+  // A base that cannot be a real folder when there is none: every URI then reaches
+  // SceneFolder::resolve, which refuses it with a clear message.
+  const std::string base_dir = folder.allows_files() ? folder.root().string() : "<uploaded>";
+  ctx.base_prefix = base_dir.back() == '/' ? base_dir : base_dir + "/";
+  ctx.max_file_bytes = limits.max_file_bytes;
+  ctx.max_texture_dimension = limits.max_texture_dimension;
+
+  tinygltf::Model model;
+  ctx.model = &model;
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&file_exists, &expand_file_path, &read_whole_file,
+                                              &write_whole_file, &ctx});
+  loader.SetImageLoader(&keep_encoded_image, &ctx);
+
+  std::string err;
+  std::string warn;
+  bool parsed = false;
+  try {
+    if (binary) {
+      parsed = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                           static_cast<unsigned int>(bytes.size()), base_dir);
+    } else {
+      parsed = loader.LoadASCIIFromString(&model, &err, &warn,
+                                          reinterpret_cast<const char*>(json_text.data()),
+                                          static_cast<unsigned int>(json_text.size()), base_dir);
+    }
+  } catch (const std::exception& e) {
+    return invalid_argument(std::string("glTF parser failed: ") + e.what());
+  } catch (...) {
+    return invalid_argument("glTF parser failed with an unknown exception");
+  }
+  if (!parsed) {
+    if (ctx.first_error) return *ctx.first_error;
+    return invalid_argument("invalid glTF: " + trim(err.empty() ? "unknown parse error" : err));
+  }
+  DDGI_TRY(check_images_loaded(model, ctx));
+  return model;
+}
+
+}  // namespace ddgi
