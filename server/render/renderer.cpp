@@ -9,12 +9,13 @@ namespace ddgi {
 namespace {
 
 constexpr uint32_t kMaxImageDimension = 16384;
-constexpr uint32_t kMaxTimedPasses = 32;
+constexpr uint32_t kMaxTimedPasses = 5 * 64 + 8;  // field updates + frame passes
 
 static_assert(sizeof(gpu::GBufferTexel) == 40);
 static_assert(sizeof(gpu::PrimaryConstants) == 64);
 static_assert(sizeof(gpu::DirectConstants) == 16);
 static_assert(sizeof(gpu::TonemapConstants) == 16);
+static_assert(sizeof(gpu::IndirectConstants) == 32);
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -22,36 +23,16 @@ bool finite(const glm::vec3& v) {
 
 }  // namespace
 
-Result<Tonemap> parse_tonemap(const std::string& text) {
-  if (text == "clamp") return Tonemap::kClamp;
-  if (text == "reinhard") return Tonemap::kReinhard;
-  if (text == "aces") return Tonemap::kAces;
-  return invalid_argument("tonemap must be one of clamp, reinhard, aces (got '" + text + "')");
-}
-
-Result<DirectMode> parse_direct_mode(const std::string& text) {
-  if (text == "shadow-rays") return DirectMode::kTracedShadows;
-  if (text == "unshadowed") return DirectMode::kUnshadowed;
-  return invalid_argument("direct mode must be one of shadow-rays, unshadowed (got '" + text +
-                          "')");
-}
-
-Result<View> parse_view(const std::string& text) {
-  if (text == "full") return View::kFull;
-  if (text == "direct") return View::kDirect;
-  if (text == "indirect") return View::kIndirect;
-  if (text == "albedo") return View::kAlbedo;
-  if (text == "normal") return View::kNormal;
-  return invalid_argument("view must be one of full, direct, indirect, albedo, normal (got '" +
-                          text + "')");
-}
-
 Status validate(const FrameSettings& s) {
   if (s.width < 1 || s.width > kMaxImageDimension || s.height < 1 ||
       s.height > kMaxImageDimension) {
     return invalid_argument(
         "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
         " is out of range: each side must be in [1, " + std::to_string(kMaxImageDimension) + "]");
+  }
+  if (s.field_updates > 64) {
+    return invalid_argument("field updates per frame must be in [0, 64] (got " +
+                            std::to_string(s.field_updates) + ")");
   }
   if (!(s.exposure > 0.0f) || !(s.exposure <= 1e9f)) {
     return invalid_argument("exposure must be in (0, 1e9] (got " + std::to_string(s.exposure) +
@@ -87,9 +68,10 @@ CameraBasis camera_basis(const Camera& camera, uint32_t width, uint32_t height) 
 }
 
 Result<std::unique_ptr<Renderer>> Renderer::create(vk::Context& context, GpuScene& scene,
+                                                   IrradianceField* field,
                                                    vk::TraceBackend backend) {
   DDGI_TRY(context.check_backend(backend));
-  std::unique_ptr<Renderer> renderer(new Renderer(context, scene));
+  std::unique_ptr<Renderer> renderer(new Renderer(context, scene, field));
   renderer->backend_ = backend;
   DDGI_TRY(renderer->create_kernels());
   DDGI_ASSIGN_OR_RETURN(renderer->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
@@ -171,21 +153,39 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
                                     static_cast<uint32_t>(settings.view)};
   const gpu::TonemapConstants tonemap{settings.width, settings.height,
                                       static_cast<uint32_t>(settings.tonemap), settings.exposure};
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), frame_set_};
+  gpu::IndirectConstants indirect{};
+  indirect.camera_position = basis.position;
+  indirect.view = static_cast<uint32_t>(settings.view);
+  indirect.width = settings.width;
+  indirect.height = settings.height;
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), frame_set_,
+                                  field_ ? field_->sampling_set() : VK_NULL_HANDLE};
+  const std::span<const VkDescriptorSet> frame_sets(sets, 2);
   const glm::uvec3 size{settings.width, settings.height, 1};
 
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_.begin_frame(cmd);
+    if (field_) {
+      for (uint32_t i = 0; i < settings.field_updates; ++i) {
+        field_->record_update(cmd, timer_, settings.direct_mode);
+      }
+    }
     timer_.begin_pass(cmd, "primary");
-    primary_.dispatch(cmd, sets, &primary, size);
+    primary_.dispatch(cmd, frame_sets, &primary, size);
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
     timer_.begin_pass(cmd, "direct");
-    direct_.dispatch(cmd, sets, &direct, size);
+    direct_.dispatch(cmd, frame_sets, &direct, size);
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
+    if (field_) {
+      timer_.begin_pass(cmd, "indirect");
+      indirect_.dispatch(cmd, sets, &indirect, size);
+      timer_.end_pass(cmd);
+      vk::barrier_all(cmd);
+    }
     timer_.begin_pass(cmd, "tonemap");
-    tonemap_.dispatch(cmd, sets, &tonemap, size);
+    tonemap_.dispatch(cmd, frame_sets, &tonemap, size);
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
     timer_.begin_pass(cmd, "readback");

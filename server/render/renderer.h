@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/result.h"
+#include "gi/irradiance_field.h"
+#include "render/frame_types.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
 #include "vk/context.h"
@@ -15,14 +17,6 @@
 #include "vk/timer.h"
 
 namespace ddgi {
-
-enum class Tonemap : uint32_t { kClamp = 0, kReinhard = 1, kAces = 2 };
-enum class DirectMode : uint32_t { kTracedShadows = 0, kUnshadowed = 1 };
-enum class View : uint32_t { kFull = 0, kDirect = 1, kIndirect = 2, kAlbedo = 3, kNormal = 4 };
-
-Result<Tonemap> parse_tonemap(const std::string& text);
-Result<DirectMode> parse_direct_mode(const std::string& text);
-Result<View> parse_view(const std::string& text);
 
 // What one frame looks like. Every field: default, allowed range, reason.
 struct FrameSettings {
@@ -37,6 +31,9 @@ struct FrameSettings {
   Tonemap tonemap = Tonemap::kAces;
   // Linear multiplier before tone mapping; (0, 1e9]. 1: radiance 1 maps to about mid-white.
   float exposure = 1.0f;
+  // Irradiance-field updates recorded before this frame's passes, in [0, 64]. 1: one update
+  // per frame, the real-time loop.
+  uint32_t field_updates = 1;
 };
 Status validate(const FrameSettings& settings);
 
@@ -52,24 +49,28 @@ struct FrameResult {
 class Renderer {
  public:
   // `backend`: the tracing backend of every kernel (must be supported by the device).
+  // `field`: the irradiance field that gives indirect light; nullptr renders direct light only.
   static Result<std::unique_ptr<Renderer>> create(vk::Context& context, GpuScene& scene,
-                                                  vk::TraceBackend backend);
+                                                  IrradianceField* field, vk::TraceBackend backend);
 
   Result<FrameResult> render(const FrameSettings& settings);
   vk::TraceBackend backend() const { return backend_; }
 
  private:
-  Renderer(vk::Context& context, GpuScene& scene) : context_(context), scene_(scene) {}
+  Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field)
+      : context_(context), scene_(scene), field_(field) {}
   Status create_kernels();
   Status resize(uint32_t width, uint32_t height);
 
   vk::Context& context_;
   GpuScene& scene_;
+  IrradianceField* field_ = nullptr;
   vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
   vk::DescriptorLayout frame_layout_;
   VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
   vk::Kernel primary_;
   vk::Kernel direct_;
+  vk::Kernel indirect_;
   vk::Kernel tonemap_;
   vk::GpuTimer timer_;
 

@@ -1,1 +1,167 @@
-int main() { return 0; }
+// ddgi-render: renders one frame of a scene without any server and writes it to a file.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/flags.h"
+#include "core/log.h"
+#include "encode/write_image.h"
+#include "render/camera_fit.h"
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "vk/context.h"
+
+namespace ddgi {
+namespace {
+
+constexpr const char* kUsage = R"(usage: ddgi-render [SCENE] [flags]
+
+Renders one frame of SCENE (.gltf, .glb or a .ddgi.json sidecar; default: the built-in
+Cornell box) and writes it to --out. Prints the GPU time of every pass.
+
+  --out FILE            output image: .png, .jpg or .exr (linear HDR)   [frame.png]
+  --width N --height N  image size, 1..16384                            [640 x 480]
+  --camera px,py,pz,tx,ty,tz[,yfov]  position, target, vertical FOV in degrees
+                                                          [the scene's camera, or a fitted one]
+  --backend B           auto | query | pipeline                         [auto]
+  --view V              full | direct | indirect | albedo | normal      [full]
+  --direct M            shadow-rays | unshadowed                        [shadow-rays]
+  --tonemap T           aces | reinhard | clamp                         [aces]
+  --exposure X          linear multiplier before tone mapping           [1]
+  --jpeg-quality Q      1..100                                          [90]
+  --frames N            render N times and report median pass times     [1]
+  --device NAME         use the Vulkan device whose name contains NAME
+  --validation          enable Vulkan validation layers
+  --log-level L         debug | info | warning | error                  [info]
+)";
+
+std::string default_scene_path() {
+#ifdef DDGI_DEFAULT_SCENE
+  return DDGI_DEFAULT_SCENE;
+#else
+  return "scenes/cornell_box.gltf";
+#endif
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
+                                                  {"out", "width", "height", "camera", "backend",
+                                                   "view", "direct", "tonemap", "exposure",
+                                                   "jpeg-quality", "frames", "device", "log-level"},
+                                                  {"validation", "help"}));
+  if (flags.has("help")) {
+    std::fputs(kUsage, stdout);
+    return ok_status();
+  }
+  if (flags.positional().size() > 1) {
+    return invalid_argument("expected at most one scene argument (see --help)");
+  }
+  DDGI_ASSIGN_OR_RETURN(const std::string level_text, flags.get_string("log-level", "info"));
+  LogLevel level;
+  if (!parse_log_level(level_text, &level)) {
+    return invalid_argument("--log-level must be debug, info, warning, error or off");
+  }
+  set_log_level(level);
+
+  const std::string scene_path =
+      flags.positional().empty() ? default_scene_path() : flags.positional()[0];
+  DDGI_ASSIGN_OR_RETURN(const std::string out_path, flags.get_string("out", "frame.png"));
+  DDGI_ASSIGN_OR_RETURN(const encode::ImageFormat format, encode::format_from_path(out_path));
+  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
+  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
+  DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 1, 1, 10000));
+  DDGI_ASSIGN_OR_RETURN(const int64_t quality, flags.get_int("jpeg-quality", 90, 1, 100));
+
+  FrameSettings settings;
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 640, 1, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 480, 1, 16384));
+  settings.width = static_cast<uint32_t>(width);
+  settings.height = static_cast<uint32_t>(height);
+  DDGI_ASSIGN_OR_RETURN(const double exposure, flags.get_double("exposure", 1.0, 1e-9, 1e9));
+  settings.exposure = static_cast<float>(exposure);
+  DDGI_ASSIGN_OR_RETURN(const std::string view, flags.get_string("view", "full"));
+  DDGI_ASSIGN_OR_RETURN(settings.view, parse_view(view));
+  DDGI_ASSIGN_OR_RETURN(const std::string direct, flags.get_string("direct", "shadow-rays"));
+  DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
+  DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
+  DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
+  DDGI_ASSIGN_OR_RETURN(const std::vector<double> camera_values, flags.get_doubles("camera", 6, 7));
+
+  DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
+  for (const std::string& warning : scene.warnings) LOG_WARNING << scene_path << ": " << warning;
+  settings.camera = default_camera(scene);
+  if (!camera_values.empty()) {
+    DDGI_ASSIGN_OR_RETURN(settings.camera, camera_from_values(camera_values, settings.camera));
+  }
+
+  vk::ContextOptions options;
+  options.validation = flags.has("validation");
+  DDGI_ASSIGN_OR_RETURN(options.device_filter, flags.get_string("device", ""));
+  options.backend = forced_backend;
+  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
+  DDGI_ASSIGN_OR_RETURN(auto renderer,
+                        Renderer::create(*context, *gpu_scene, context->default_backend()));
+  LOG_INFO << "scene " << scene_path << ": " << gpu_scene->triangle_count() << " triangles, "
+           << scene.lights.size() << " lights, " << gpu_scene->gpu_bytes() / (1 << 20)
+           << " MiB on the GPU";
+
+  FrameResult frame;
+  std::vector<std::vector<double>> pass_ms;
+  for (int64_t i = 0; i < frames; ++i) {
+    DDGI_ASSIGN_OR_RETURN(frame, renderer->render(settings));
+    pass_ms.resize(frame.pass_times.size());
+    for (size_t p = 0; p < frame.pass_times.size(); ++p) {
+      pass_ms[p].push_back(frame.pass_times[p].milliseconds);
+    }
+  }
+
+  if (format == encode::ImageFormat::kExr) {
+    encode::ImageRgbF hdr{frame.width, frame.height, {}};
+    hdr.rgb.reserve(size_t(frame.width) * frame.height * 3);
+    for (size_t i = 0; i < size_t(frame.width) * frame.height; ++i) {
+      hdr.rgb.insert(hdr.rgb.end(), &frame.radiance[i * 4], &frame.radiance[i * 4 + 3]);
+    }
+    DDGI_TRY(encode::write_image(out_path, hdr));
+  } else {
+    encode::WriteOptions write_options;
+    write_options.jpeg_quality = static_cast<int>(quality);
+    DDGI_TRY(encode::write_image(out_path, encode::ImageRgba8{frame.width, frame.height, frame.ldr},
+                                 write_options));
+  }
+
+  std::printf("%s: %ux%u, backend %s, device %s\n", out_path.c_str(), frame.width, frame.height,
+              vk::backend_name(renderer->backend()), context->caps().device_name.c_str());
+  std::printf("%-12s %12s\n", "pass", frames > 1 ? "median ms" : "ms");
+  double total = 0.0;
+  for (size_t p = 0; p < frame.pass_times.size(); ++p) {
+    const double ms = median(pass_ms[p]);
+    total += ms;
+    std::printf("%-12s %12.3f\n", frame.pass_times[p].name.c_str(), ms);
+  }
+  std::printf("%-12s %12.3f\n", "total", total);
+  if (context->validation_message_count() > 0) {
+    return internal_error(std::to_string(context->validation_message_count()) +
+                          " Vulkan validation messages (see above)");
+  }
+  return ok_status();
+}
+
+}  // namespace
+}  // namespace ddgi
+
+int main(int argc, char** argv) {
+  const ddgi::Status status = ddgi::run(argc, argv);
+  if (!status.ok()) {
+    std::fprintf(stderr, "ddgi-render: %s\n", status.error().message.c_str());
+    return status.error().code == ddgi::ErrorCode::kInvalidArgument ? 2 : 1;
+  }
+  return 0;
+}

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
@@ -150,8 +151,9 @@ DescriptorWriter& DescriptorWriter::storage_image(uint32_t binding, const Image&
 }
 
 DescriptorWriter& DescriptorWriter::sampled_image(uint32_t binding, const Image& image,
-                                                  VkSampler sampler, uint32_t array_element) {
-  images_.push_back({sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                                                  VkSampler sampler, uint32_t array_element,
+                                                  VkImageLayout layout) {
+  images_.push_back({sampler, image.view(), layout});
   pending_.push_back(
       {binding, array_element, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, images_.size() - 1});
   return *this;
@@ -227,6 +229,14 @@ Result<std::vector<uint32_t>> load_spirv(const std::string& file_name) {
 
 // ---------------------------------------------------------------------------------------------
 // Kernels
+
+LinearDispatch linear_dispatch(uint32_t count) {
+  constexpr uint32_t kRowWidth = 65536;  // 1024 workgroups of 64: inside every device's limits
+  LinearDispatch d;
+  d.row_width = count <= kRowWidth ? std::max(count, 1u) : kRowWidth;
+  d.size = {count == 0 ? 0 : d.row_width, (count + d.row_width - 1) / d.row_width, 1};
+  return d;
+}
 
 Result<Kernel> Kernel::create(Context& context, const KernelDesc& desc, TraceBackend backend) {
   Kernel kernel;

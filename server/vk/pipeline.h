@@ -63,7 +63,8 @@ class DescriptorWriter {
   DescriptorWriter& buffer(uint32_t binding, const Buffer& buffer);
   DescriptorWriter& storage_image(uint32_t binding, const Image& image);
   DescriptorWriter& sampled_image(uint32_t binding, const Image& image, VkSampler sampler,
-                                  uint32_t array_element = 0);
+                                  uint32_t array_element = 0,
+                                  VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   DescriptorWriter& acceleration_structure(uint32_t binding, VkAccelerationStructureKHR as);
   void apply(VkDevice device);
 
@@ -93,6 +94,14 @@ struct KernelDesc {
   uint32_t push_constant_bytes = 0;
   glm::uvec3 workgroup{8, 8, 1};  // compute local size (set through specialization constants)
 };
+
+// A one-invocation-per-item dispatch of `count` items, folded into rows of `row_width` so
+// that no dimension exceeds device limits (shaders/common/dispatch.glsl unfolds it).
+struct LinearDispatch {
+  uint32_t row_width = 0;
+  glm::uvec3 size{0, 1, 1};
+};
+LinearDispatch linear_dispatch(uint32_t count);
 
 class Kernel {
  public:

@@ -58,6 +58,15 @@ struct DirectConstants {
   uint view;
 };
 
+struct IndirectConstants {
+  vec3 camera_position;
+  uint view;
+  uint width;
+  uint height;
+  uint pad0;
+  uint pad1;
+};
+
 struct TonemapConstants {
   uint width;
   uint height;

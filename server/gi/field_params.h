@@ -1,0 +1,109 @@
+// Parameters of one DDGI irradiance field: the probe grid and how it is traced, blended and
+// sampled. One struct, one validation function; the CLI, config files and the RPC API all go
+// through validate(). References: Majercik et al. 2019/2021 ("the 2021 paper") and Hvezda 2022
+// ("the thesis"), in ../shared/papers/.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "core/result.h"
+#include "scene/scene.h"
+
+namespace ddgi {
+
+struct IrradianceFieldParams {
+  // --- Grid ---------------------------------------------------------------------------------
+  // World position of probe (0,0,0). Finite.
+  glm::vec3 origin{0.0f};
+  // Distance between neighbouring probes per axis. Finite, > 0. Sets the scale of every
+  // distance-based quantity (self-shadow bias, visibility range).
+  glm::vec3 spacing{1.0f};
+  // Probes per axis, each in [1, 512], total <= 4,194,304. Any count, not only powers of two.
+  glm::ivec3 counts{4, 4, 4};
+
+  // --- Tracing ------------------------------------------------------------------------------
+  // Rays per probe per update that are shaded and blended, in [1, 1024]. 128 keeps noise low at
+  // the default hysteresis (the thesis finds 64 enough for stable sampling; 2021 uses 256).
+  uint32_t rays_per_probe = 128;
+  // Extra rays per probe in a fixed (never rotated) pattern, in [0, 256]. Traced for hit
+  // distances only, never shaded or blended: relocation and classification need directions that
+  // do not change between updates (2021 paper, RTXGI).
+  uint32_t fixed_rays = 32;
+  // Rays longer than this are misses and see the environment. (0, 1e30]. Infinite by default:
+  // the field should see the whole scene.
+  float max_ray_distance = 1e30f;
+
+  // --- Atlases ------------------------------------------------------------------------------
+  // Interior side of each probe's octahedral irradiance map, in [4, 32]. 8: irradiance is
+  // smooth (2021 paper).
+  uint32_t irradiance_texels = 8;
+  // Interior side of each probe's distance map, in [4, 64]. 16: visibility needs more detail
+  // than irradiance (2021 paper).
+  uint32_t distance_texels = 16;
+
+  // --- Blending -----------------------------------------------------------------------------
+  // Weight of the previous value per update, in [0, 0.999]. 0.97: the 2021 paper's default
+  // trade of stability against lag.
+  float hysteresis = 0.97f;
+  // Same for the distance moments, in [0, 0.999]; the 2021 paper keeps visibility steadier.
+  float distance_hysteresis = 0.97f;
+  // A texel whose value changes by more than this fraction of its magnitude (in the encoded
+  // space) lowers its hysteresis by 0.15, in [0, 1]. 0.25 (2021 paper, sec. 4.3, taken
+  // relative to the texel's magnitude so it behaves the same at every light intensity).
+  float change_threshold = 0.25f;
+  // Beyond this relative change the old value is dropped (hysteresis 0), in [0, 1]. 0.8: the
+  // distribution changed completely (2021 paper).
+  float new_distribution_threshold = 0.8f;
+  // Perceptual encoding exponent of stored irradiance, in [1, 10]. 5 (2021 paper): faster
+  // light-to-dark convergence and fewer firefly flickers. 1 stores linear irradiance.
+  float irradiance_gamma = 5.0f;
+  // Power-cosine exponent of the distance blend, in [1, 100]. 50: sharp visibility moments
+  // (2019 paper, RTXGI; the thesis's k_s).
+  float distance_exponent = 50.0f;
+  // Back-face hits shorten their distance to this fraction, in [0, 1]. 0.2: "shorten by 80%"
+  // (2021 paper, sec. 4.1), so probes see back faces as shadowed without a zero distance.
+  float backface_distance_scale = 0.2f;
+
+  // --- Sampling -----------------------------------------------------------------------------
+  // The 2021 paper's single self-shadow bias B (eq. 2), in [0, 2]. 0.3: its default.
+  float self_shadow_bias = 0.3f;
+  // Multiplies irradiance fed back into probe-ray shading, in [0, 1]. 1: energy conserving
+  // (the furnace test converges to Le / (1 - rho)); lower it to damp runaway feedback.
+  float energy_conservation = 1.0f;
+  // Weights below this are crushed (w^3 / c^2), in [0, 1]. 0.2 (RTXGI, thesis eq. 4.10).
+  float weight_crush_threshold = 0.2f;
+
+  // --- Determinism ----------------------------------------------------------------------------
+  // Seed of the per-update random ray rotation: the same seed gives the same field.
+  uint32_t seed = 1;
+};
+
+// Errors name the field and its allowed range.
+Status validate(const IrradianceFieldParams& params);
+
+// A grid fitted to `bounds`: about `target_probes` probes, cell-centred (probes sit half a
+// spacing inside the bounds, so a room's probes are not on its walls), at least 1 per axis.
+IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes = 4096,
+                                         IrradianceFieldParams base = {});
+
+// The grid the scene asks for (sidecar `probe_grid`), else one fitted to its bounds.
+IrradianceFieldParams default_field_params(const Scene& scene);
+
+uint64_t probe_count(const IrradianceFieldParams& params);
+
+// Where each probe's maps live in the two atlases (see shaders/shared/field_data.h).
+struct AtlasLayout {
+  uint32_t tiles_per_row = 1;
+  uint32_t rows = 1;
+  glm::uvec2 irradiance_size{0};  // texels, borders included
+  glm::uvec2 distance_size{0};
+};
+AtlasLayout atlas_layout(const IrradianceFieldParams& params);
+// Bytes of GPU memory the field's atlases and ray buffers need (checked against the budget
+// before anything is allocated).
+uint64_t field_gpu_bytes(const IrradianceFieldParams& params);
+
+}  // namespace ddgi

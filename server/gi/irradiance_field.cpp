@@ -1,0 +1,356 @@
+#include "gi/irradiance_field.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/log.h"
+
+namespace ddgi {
+namespace {
+
+static_assert(sizeof(gpu::FieldConstants) % 4 == 0 && sizeof(gpu::FieldConstants) <= 65536,
+              "FieldConstants is written with vkCmdUpdateBuffer");
+static_assert(sizeof(gpu::ProbeRay) == 64);
+static_assert(sizeof(gpu::FieldDispatch) == 16);
+
+constexpr uint32_t kMaxTimedPasses = 16;
+constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
+
+// SplitMix64: a counter-based generator, so update n's rotation depends only on (seed, n).
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+float uniform01(uint64_t& state) {
+  state = splitmix64(state);
+  return float(state >> 40) * (1.0f / 16777216.0f);
+}
+
+// A uniformly distributed random rotation (Shoemake's unit quaternion from three uniforms).
+glm::mat4 random_rotation(uint32_t seed, uint64_t update) {
+  uint64_t state = (uint64_t(seed) << 32) ^ update;
+  const float u1 = uniform01(state), u2 = uniform01(state), u3 = uniform01(state);
+  const float a = std::sqrt(1.0f - u1), b = std::sqrt(u1);
+  const float two_pi = 6.28318530718f;
+  const glm::quat q(a * std::sin(two_pi * u2), a * std::cos(two_pi * u2), b * std::sin(two_pi * u3),
+                    b * std::cos(two_pi * u3));
+  return glm::mat4_cast(glm::normalize(q));
+}
+
+bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b) {
+  return a.counts != b.counts || a.rays_per_probe != b.rays_per_probe ||
+         a.fixed_rays != b.fixed_rays || a.irradiance_texels != b.irradiance_texels ||
+         a.distance_texels != b.distance_texels;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<IrradianceField>> IrradianceField::create(
+    vk::Context& context, GpuScene& scene, const IrradianceFieldParams& params,
+    vk::TraceBackend backend) {
+  DDGI_TRY(validate(params));
+  std::unique_ptr<IrradianceField> field(new IrradianceField(context, scene));
+  field->params_ = params;
+  DDGI_TRY(field->create_layouts_and_kernels(backend));
+  DDGI_TRY(field->create_resources());
+  return field;
+}
+
+Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
+  DDGI_ASSIGN_OR_RETURN(
+      sampling_layout_,
+      vk::DescriptorLayout::create(
+          context_,
+          {{gpu::kFieldBindingConstants},
+           {gpu::kFieldBindingProbes},
+           {gpu::kFieldBindingIrradiance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+           {gpu::kFieldBindingDistance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+          1, "field sampling set"));
+  DDGI_ASSIGN_OR_RETURN(
+      update_layout_,
+      vk::DescriptorLayout::create(
+          context_,
+          {{gpu::kFieldUpdateBindingRays},
+           {gpu::kFieldUpdateBindingIrradianceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+           {gpu::kFieldUpdateBindingDistanceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+          1, "field update set"));
+  DDGI_ASSIGN_OR_RETURN(query_layout_,
+                        vk::DescriptorLayout::create(context_, {{0}, {1}}, 1, "field query set"));
+  DDGI_ASSIGN_OR_RETURN(query_set_, query_layout_.allocate());
+  DDGI_ASSIGN_OR_RETURN(sampling_set_, sampling_layout_.allocate());
+  DDGI_ASSIGN_OR_RETURN(update_set_, update_layout_.allocate());
+
+  const std::vector<VkDescriptorSetLayout> update_layouts = {
+      scene_.layout(), update_layout_.handle(), sampling_layout_.handle()};
+  const uint32_t push = sizeof(gpu::FieldDispatch);
+  auto kernel = [&](const char* name, bool traces) {
+    return vk::Kernel::create(context_, {name, traces, update_layouts, push, kLinearWorkgroup},
+                              backend);
+  };
+  DDGI_ASSIGN_OR_RETURN(trace_, kernel("field_trace", true));
+  DDGI_ASSIGN_OR_RETURN(shade_, kernel("field_shade", true));
+  DDGI_ASSIGN_OR_RETURN(blend_irradiance_, kernel("field_blend_irradiance", false));
+  DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
+  DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
+  DDGI_ASSIGN_OR_RETURN(
+      query_,
+      vk::Kernel::create(context_,
+                         {"field_query",
+                          false,
+                          {scene_.layout(), query_layout_.handle(), sampling_layout_.handle()},
+                          push,
+                          kLinearWorkgroup},
+                         backend));
+  DDGI_ASSIGN_OR_RETURN(timer_, vk::GpuTimer::create(context_, kMaxTimedPasses));
+  DDGI_ASSIGN_OR_RETURN(
+      sampler_,
+      vk::Sampler::create(context_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "atlas sampler"));
+  return ok_status();
+}
+
+Status IrradianceField::create_resources() {
+  // Free the old atlases first so the budget sees only the new ones.
+  constants_.reset();
+  probes_.reset();
+  rays_.reset();
+  irradiance_.reset();
+  distance_.reset();
+  const uint64_t needed = field_gpu_bytes(params_);
+  const uint64_t limit =
+      context_.memory_budget() ? context_.memory_budget() : context_.caps().device_local_bytes;
+  if (limit && context_.allocated_bytes() + needed > limit) {
+    return resource_exhausted(
+        "the irradiance field (" + std::to_string(params_.counts.x) + "x" +
+        std::to_string(params_.counts.y) + "x" + std::to_string(params_.counts.z) + " probes, " +
+        std::to_string(params_.rays_per_probe + params_.fixed_rays) + " rays each) needs " +
+        std::to_string(needed) + " bytes of GPU memory; " +
+        std::to_string(limit - std::min(limit, context_.allocated_bytes())) +
+        " bytes of the budget are free");
+  }
+
+  const uint64_t before = context_.allocated_bytes();
+  layout_ = atlas_layout(params_);
+  const uint64_t probes = probe_count(params_);
+  const uint64_t rays = probes * (params_.rays_per_probe + params_.fixed_rays);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  DDGI_ASSIGN_OR_RETURN(constants_,
+                        vk::Buffer::create(context_, sizeof(gpu::FieldConstants), storage,
+                                           vk::MemoryUsage::kDeviceLocal, "field constants"));
+  DDGI_ASSIGN_OR_RETURN(probes_,
+                        vk::Buffer::create(context_, probes * sizeof(gpu::ProbeState), storage,
+                                           vk::MemoryUsage::kDeviceLocal, "probe states"));
+  DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
+                                                  vk::MemoryUsage::kDeviceLocal, "probe rays"));
+  const VkImageUsageFlags image_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                        VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  DDGI_ASSIGN_OR_RETURN(
+      irradiance_,
+      vk::Image::create_2d(context_, layout_.irradiance_size.x, layout_.irradiance_size.y,
+                           VK_FORMAT_R32G32B32A32_SFLOAT, image_usage, "irradiance atlas"));
+  DDGI_ASSIGN_OR_RETURN(
+      distance_, vk::Image::create_2d(context_, layout_.distance_size.x, layout_.distance_size.y,
+                                      VK_FORMAT_R32G32_SFLOAT, image_usage, "distance atlas"));
+  gpu_bytes_ = context_.allocated_bytes() - before;
+
+  vk::DescriptorWriter(sampling_set_)
+      .buffer(gpu::kFieldBindingConstants, constants_)
+      .buffer(gpu::kFieldBindingProbes, probes_)
+      .sampled_image(gpu::kFieldBindingIrradiance, irradiance_, sampler_.handle(), 0,
+                     VK_IMAGE_LAYOUT_GENERAL)
+      .sampled_image(gpu::kFieldBindingDistance, distance_, sampler_.handle(), 0,
+                     VK_IMAGE_LAYOUT_GENERAL)
+      .apply(context_.device());
+  vk::DescriptorWriter(update_set_)
+      .buffer(gpu::kFieldUpdateBindingRays, rays_)
+      .storage_image(gpu::kFieldUpdateBindingIrradianceOut, irradiance_)
+      .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
+      .apply(context_.device());
+  return reset();
+}
+
+Status IrradianceField::reset() {
+  update_index_ = 0;
+  std::vector<gpu::ProbeState> states(probe_count(params_));
+  for (gpu::ProbeState& s : states) s = {glm::vec3(0.0f), gpu::kProbeResetHistory};
+  DDGI_TRY(vk::update_buffer(
+      context_, probes_,
+      {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
+  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  return context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (const vk::Image* image : {&irradiance_, &distance_}) {
+      vk::transition_image(cmd, image->handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_GENERAL);
+      vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    }
+    vk::barrier_all(cmd);
+  });
+}
+
+Status IrradianceField::set_params(const IrradianceFieldParams& params) {
+  DDGI_TRY(validate(params));
+  const IrradianceFieldParams old = params_;
+  params_ = params;
+  Status status = grid_changed(old, params) ? create_resources() : ok_status();
+  if (!status.ok()) {
+    // Keep serving with the old field: nothing is lost on a refused change.
+    params_ = old;
+    DDGI_TRY(create_resources());
+    return status.error();
+  }
+  if (old.origin != params.origin || old.spacing != params.spacing) return reset();
+  return ok_status();
+}
+
+gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
+  gpu::FieldConstants c{};
+  c.origin = params_.origin;
+  c.spacing = params_.spacing;
+  c.counts = params_.counts;
+  c.probe_count = static_cast<uint32_t>(probe_count(params_));
+  c.rays_per_probe = params_.rays_per_probe;
+  c.fixed_rays = params_.fixed_rays;
+  c.irradiance_texels = params_.irradiance_texels;
+  c.distance_texels = params_.distance_texels;
+  c.tiles_per_row = layout_.tiles_per_row;
+  c.update_index = static_cast<uint32_t>(update_index_);
+  c.irradiance_atlas_size = glm::vec2(layout_.irradiance_size);
+  c.distance_atlas_size = glm::vec2(layout_.distance_size);
+  c.hysteresis = params_.hysteresis;
+  c.distance_hysteresis = params_.distance_hysteresis;
+  c.change_threshold = params_.change_threshold;
+  c.new_distribution_threshold = params_.new_distribution_threshold;
+  c.irradiance_gamma = params_.irradiance_gamma;
+  c.distance_exponent = params_.distance_exponent;
+  c.backface_distance_scale = params_.backface_distance_scale;
+  c.self_shadow_bias = params_.self_shadow_bias;
+  c.energy_conservation = params_.energy_conservation;
+  c.weight_crush_threshold = params_.weight_crush_threshold;
+  c.max_ray_distance = params_.max_ray_distance;
+  c.max_visibility_distance = 1.5f * glm::length(params_.spacing);
+  c.ray_rotation = random_rotation(params_.seed, update_index_);
+  c.direct_mode = static_cast<uint32_t>(direct_mode);
+  return c;
+}
+
+uint64_t IrradianceField::rays_per_update() const {
+  const uint64_t probes = probe_count(params_);
+  return probes * (params_.rays_per_probe + params_.fixed_rays) +
+         probes * params_.rays_per_probe * scene_.scene().lights.size();
+}
+
+void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
+                                    DirectMode direct_mode) {
+  const gpu::FieldConstants c = constants(direct_mode);
+  vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+  vk::barrier_all(cmd);
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
+  const uint64_t probes = probe_count(params_);
+  auto run = [&](const vk::Kernel& kernel, const char* pass, uint64_t count) {
+    const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
+    const gpu::FieldDispatch push{static_cast<uint32_t>(count), d.row_width, 0, 0};
+    timer.begin_pass(cmd, pass);
+    kernel.dispatch(cmd, sets, &push, d.size);
+    timer.end_pass(cmd);
+    vk::barrier_all(cmd);
+  };
+  const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
+  run(trace_, "field trace", probes * (params_.rays_per_probe + params_.fixed_rays));
+  run(shade_, "field shade", probes * params_.rays_per_probe);
+  run(blend_irradiance_, "blend irradiance", probes * ti * ti);
+  run(blend_distance_, "blend distance", probes * td * td);
+  run(borders_, "borders", probes * 4 * (std::max(ti, td) + 1));
+  ++update_index_;
+}
+
+Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, DirectMode direct_mode) {
+  for (uint32_t i = 0; i < count; ++i) {
+    DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+      timer_.begin_frame(cmd);
+      record_update(cmd, timer_, direct_mode);
+    }));
+  }
+  context_.collect_garbage();
+  return timer_.read();
+}
+
+Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries) {
+  struct GpuQuery {
+    glm::vec3 position;
+    float pad0;
+    glm::vec3 normal;
+    float pad1;
+    glm::vec3 to_viewer;
+    float pad2;
+  };
+  std::vector<GpuQuery> input;
+  for (const IrradianceQuery& q : queries) {
+    input.push_back(
+        {q.position, 0.0f, glm::normalize(q.normal), 0.0f, glm::normalize(q.to_viewer), 0.0f});
+  }
+  if (input.empty()) return std::vector<glm::vec3>{};
+  DDGI_ASSIGN_OR_RETURN(
+      vk::Buffer in,
+      vk::upload_vector<GpuQuery>(context_, input, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "queries"));
+  DDGI_ASSIGN_OR_RETURN(
+      vk::Buffer out,
+      vk::Buffer::create(context_, input.size() * sizeof(glm::vec4),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                         vk::MemoryUsage::kDeviceLocal, "query answers"));
+  vk::DescriptorWriter(query_set_).buffer(0, in).buffer(1, out).apply(context_.device());
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
+  const uint32_t count = static_cast<uint32_t>(input.size());
+  const vk::LinearDispatch d = vk::linear_dispatch(count);
+  const gpu::FieldDispatch push{count, d.row_width, 0, 0};
+  DDGI_TRY(context_.submit_and_wait(
+      [&](VkCommandBuffer cmd) { query_.dispatch(cmd, sets, &push, d.size); }));
+  std::vector<glm::vec4> answers(input.size());
+  DDGI_TRY(vk::download_buffer(context_, out, answers.data(), answers.size() * sizeof(glm::vec4)));
+  std::vector<glm::vec3> result;
+  for (const glm::vec4& a : answers) result.push_back(glm::vec3(a));
+  return result;
+}
+
+Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image& image,
+                                                                uint32_t channels) {
+  AtlasImage atlas;
+  atlas.width = image.width();
+  atlas.height = image.height();
+  atlas.channels = channels;
+  const VkDeviceSize bytes = VkDeviceSize(atlas.width) * atlas.height * channels * sizeof(float);
+  DDGI_ASSIGN_OR_RETURN(vk::Buffer readback,
+                        vk::Buffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "atlas readback"));
+  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    vk::barrier_all(cmd);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {atlas.width, atlas.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_GENERAL, readback.handle(), 1,
+                           &copy);
+  }));
+  atlas.texels.resize(size_t(atlas.width) * atlas.height * channels);
+  std::memcpy(atlas.texels.data(), readback.mapped(), bytes);
+  return atlas;
+}
+
+Result<IrradianceField::AtlasImage> IrradianceField::read_irradiance_atlas() {
+  return read_atlas(irradiance_, 4);
+}
+
+Result<IrradianceField::AtlasImage> IrradianceField::read_distance_atlas() {
+  return read_atlas(distance_, 2);
+}
+
+}  // namespace ddgi

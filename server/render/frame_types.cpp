@@ -1,0 +1,29 @@
+#include "render/frame_types.h"
+
+namespace ddgi {
+
+Result<Tonemap> parse_tonemap(const std::string& text) {
+  if (text == "clamp") return Tonemap::kClamp;
+  if (text == "reinhard") return Tonemap::kReinhard;
+  if (text == "aces") return Tonemap::kAces;
+  return invalid_argument("tonemap must be one of clamp, reinhard, aces (got '" + text + "')");
+}
+
+Result<DirectMode> parse_direct_mode(const std::string& text) {
+  if (text == "shadow-rays") return DirectMode::kTracedShadows;
+  if (text == "unshadowed") return DirectMode::kUnshadowed;
+  return invalid_argument("direct mode must be one of shadow-rays, unshadowed (got '" + text +
+                          "')");
+}
+
+Result<View> parse_view(const std::string& text) {
+  if (text == "full") return View::kFull;
+  if (text == "direct") return View::kDirect;
+  if (text == "indirect") return View::kIndirect;
+  if (text == "albedo") return View::kAlbedo;
+  if (text == "normal") return View::kNormal;
+  return invalid_argument("view must be one of full, direct, indirect, albedo, normal (got '" +
+                          text + "')");
+}
+
+}  // namespace ddgi

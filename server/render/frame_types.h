@@ -1,0 +1,21 @@
+// Choices a frame is made of, shared by the renderer, the fields and the service. Values match
+// the kTonemap* / kDirect* / kView* constants of shaders/shared/frame_data.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/result.h"
+
+namespace ddgi {
+
+enum class Tonemap : uint32_t { kClamp = 0, kReinhard = 1, kAces = 2 };
+// How direct light from punctual lights is evaluated (per pixel and at probe-ray hits).
+enum class DirectMode : uint32_t { kTracedShadows = 0, kUnshadowed = 1 };
+enum class View : uint32_t { kFull = 0, kDirect = 1, kIndirect = 2, kAlbedo = 3, kNormal = 4 };
+
+Result<Tonemap> parse_tonemap(const std::string& text);
+Result<DirectMode> parse_direct_mode(const std::string& text);
+Result<View> parse_view(const std::string& text);
+
+}  // namespace ddgi

@@ -1,0 +1,140 @@
+// The irradiance field (descriptor set 2): probe addressing, ray directions, atlas lookups
+// and the 8-probe cage query (Majercik et al. 2019/2021, Hvezda 2022 ch. 4).
+#ifndef DDGI_COMMON_FIELD_GLSL
+#define DDGI_COMMON_FIELD_GLSL
+
+#extension GL_EXT_scalar_block_layout : require
+
+#include "common/math.glsl"
+#include "shared/field_data.h"
+
+layout(set = kFieldSet, binding = kFieldBindingConstants, scalar) readonly buffer FieldBlock {
+  FieldConstants field;
+};
+layout(set = kFieldSet, binding = kFieldBindingProbes, scalar) buffer ProbeStates {
+  ProbeState probe_states[];
+};
+layout(set = kFieldSet, binding = kFieldBindingIrradiance) uniform sampler2D irradiance_atlas;
+layout(set = kFieldSet, binding = kFieldBindingDistance) uniform sampler2D distance_atlas;
+
+// --- Probe addressing: p = x + counts.x * (y + counts.y * z) -----------------------------
+ivec3 probe_grid_coord(uint p) {
+  const uint x = p % uint(field.counts.x);
+  const uint yz = p / uint(field.counts.x);
+  return ivec3(int(x), int(yz % uint(field.counts.y)), int(yz / uint(field.counts.y)));
+}
+
+uint probe_index(ivec3 c) {
+  return uint(c.x) + uint(field.counts.x) * (uint(c.y) + uint(field.counts.y) * uint(c.z));
+}
+
+vec3 probe_position(uint p) {
+  return field.origin + field.spacing * vec3(probe_grid_coord(p)) + probe_states[p].offset;
+}
+
+// --- Ray directions ------------------------------------------------------------------------
+// Point i of n on the spherical Fibonacci set (Keinert et al. 2015; thesis eq. 4.2-4.3).
+vec3 spherical_fibonacci(uint i, uint n) {
+  const float kGoldenRatio = 1.61803398875;
+  const float phi = 2.0 * kPi * fract(float(i) / kGoldenRatio);
+  const float z = 1.0 - (2.0 * float(i) + 1.0) / float(n);
+  const float r = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+  return vec3(cos(phi) * r, sin(phi) * r, z);
+}
+
+uint rays_per_probe_total() { return field.fixed_rays + field.rays_per_probe; }
+
+// Direction of ray r of any probe: the first fixed_rays never rotate; the others are rotated
+// by this update's random rotation.
+vec3 probe_ray_direction(uint r) {
+  if (r < field.fixed_rays) return spherical_fibonacci(r, field.fixed_rays);
+  return normalize(mat3(field.ray_rotation) *
+                   spherical_fibonacci(r - field.fixed_rays, field.rays_per_probe));
+}
+
+// --- Atlas addressing ---------------------------------------------------------------------
+uvec2 probe_tile_origin(uint p, uint texels) {
+  const uint tile = texels + 2u * kAtlasBorder;
+  return uvec2(p % field.tiles_per_row, p / field.tiles_per_row) * tile;
+}
+
+// Direction of interior texel (i, j) of an octahedral map with `texels` per side.
+vec3 octahedral_texel_direction(uvec2 ij, uint texels) {
+  return octahedral_decode((vec2(ij) + 0.5) / float(texels) * 2.0 - 1.0);
+}
+
+// Atlas UV of direction `d` inside probe p's map (bilinear filtering stays inside the tile
+// thanks to the border).
+vec2 atlas_uv(uint p, vec3 d, uint texels, vec2 atlas_size) {
+  const vec2 oct = octahedral_encode(d) * 0.5 + 0.5;
+  const vec2 texel = vec2(probe_tile_origin(p, texels)) + float(kAtlasBorder) + oct * float(texels);
+  return texel / atlas_size;
+}
+
+// --- The cage query -----------------------------------------------------------------------
+// Cosine-weighted mean radiance M (= E / pi, see field_data.h) arriving at `p` around normal
+// `n`. `to_viewer`: unit direction from p to whoever looks at it (camera or probe).
+vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
+  const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+  // 2021 paper, eq. 2: one bias along the normal and the view direction.
+  const vec3 bias = (n * 0.2 + to_viewer * 0.8) * (0.75 * min_spacing) * field.self_shadow_bias;
+  const vec3 biased = p + bias;
+
+  const ivec3 last = field.counts - 1;
+  const vec3 grid = (biased - field.origin) / field.spacing;
+  const ivec3 base = clamp(ivec3(floor(grid)), ivec3(0), max(last - 1, ivec3(0)));
+  const vec3 alpha = clamp(grid - vec3(base), 0.0, 1.0);
+
+  vec3 sum = vec3(0.0);
+  float weight_sum = 0.0;
+  for (uint i = 0u; i < 8u; ++i) {
+    const ivec3 offset = ivec3(i & 1u, (i >> 1) & 1u, (i >> 2) & 1u);
+    const ivec3 coord = min(base + offset, last);
+    const uint probe = probe_index(coord);
+    const vec3 probe_pos = probe_position(probe);
+
+    // Trilinear weight; axes with one probe give all weight to it.
+    const vec3 tri = mix(1.0 - alpha, alpha, vec3(offset));
+    float weight = 1.0;
+
+    // Wrap shading: probes behind the surface count less (thesis eq. 4.4 with a = 1).
+    const vec3 to_probe = safe_normalize(probe_pos - p, n);
+    const float wrap = (dot(to_probe, n) + 1.0) * 0.5;
+    weight *= wrap * wrap + 0.2;
+
+    // Chebyshev visibility from the probe's distance moments, seen from the biased point.
+    const vec3 probe_to_point = biased - probe_pos;
+    const float r = length(probe_to_point);
+    const vec2 moments =
+        textureLod(distance_atlas,
+                   atlas_uv(probe, safe_normalize(probe_to_point, n), field.distance_texels,
+                            field.distance_atlas_size),
+                   0.0).rg;
+    if (r > moments.x) {
+      const float variance = abs(moments.y - moments.x * moments.x);
+      const float d = r - moments.x;
+      const float chebyshev = variance / max(variance + d * d, 1e-30);
+      weight *= chebyshev * chebyshev * chebyshev;
+    }
+
+    // Crush tiny weights: light leaking through thin walls shows at low weights.
+    weight = max(weight, 1e-6);
+    const float c = field.weight_crush_threshold;
+    if (weight < c) weight *= weight * weight / (c * c);
+
+    weight *= max(tri.x * tri.y * tri.z, 0.0);
+
+    const vec3 encoded = textureLod(irradiance_atlas,
+                                    atlas_uv(probe, n, field.irradiance_texels,
+                                             field.irradiance_atlas_size),
+                                    0.0).rgb;
+    // 2021 paper, fig. 3: decode to gamma 2 for the blend, square after.
+    sum += weight * pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma * 0.5));
+    weight_sum += weight;
+  }
+  if (!(weight_sum > 0.0)) return vec3(0.0);
+  const vec3 blended = sum / weight_sum;
+  return sanitize_radiance(blended * blended);
+}
+
+#endif

@@ -1,0 +1,44 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Field update, pass 2: the radiance each blended ray carries back to its probe: emission,
+// direct light at the hit, and the previous field's irradiance times albedo (multiple
+// bounces). Back faces carry nothing (2021 paper, sec. 4.1); misses carry the environment.
+#include "common/lights.glsl"
+#include "common/field.glsl"
+#include "common/dispatch.glsl"
+#include "shared/frame_data.h"
+
+layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) buffer Rays { ProbeRay rays[]; };
+
+void main() {
+  const uint id = linear_invocation(pc.row_width);
+  if (id >= pc.count) return;
+  const uint probe = id / field.rays_per_probe;
+  const uint r = field.fixed_rays + id % field.rays_per_probe;
+  const uint index = probe * rays_per_probe_total() + r;
+  const ProbeRay ray = rays[index];
+  const vec3 origin = probe_position(probe);
+  const vec3 direction = probe_ray_direction(r);
+
+  vec3 radiance = vec3(0.0);
+  if ((ray.flags & kRayHit) == 0u) {
+    radiance = environment_radiance(direction);
+  } else if ((ray.flags & kRayFrontFace) != 0u) {
+    Surface s;
+    s.position = ray.position;
+    s.normal = unpack_normal(ray.normal_oct);
+    s.geometric_normal = unpack_normal(ray.geometric_normal_oct);
+    s.albedo = ray.albedo;
+    s.emission = ray.emission;
+    s.front_face = true;
+    Rng rng = rng_seed(index, field.update_index, 0x5bd1e995u);
+    const vec3 direct = direct_lighting(s, field.direct_mode == kDirectTracedShadows, rng);
+    const vec3 indirect = s.albedo * field.energy_conservation *
+                          sample_irradiance(s.position, s.normal, -direction);
+    radiance = s.emission + direct + indirect;
+  }
+  const float t = (ray.flags & kRayHit) != 0u ? ray.distance : field.max_ray_distance;
+  radiance *= glass_transmittance(origin, direction, 0.0, t);
+  rays[index].radiance = sanitize_radiance(radiance);
+}

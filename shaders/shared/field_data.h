@@ -1,0 +1,99 @@
+// The irradiance field on the GPU: descriptor set 2 of the field-update kernels and of every
+// frame kernel that samples the field.
+//
+// Irradiance convention: an irradiance texel stores the cosine-weighted mean radiance around
+// its direction n, M(n) = sum max(0, n.w) L(w) / sum max(0, n.w), which estimates E(n) / pi.
+// A Lambertian surface of albedo rho then reflects rho * M(n). In a closed furnace of uniform
+// radiance L, M = L everywhere.
+#ifndef DDGI_SHARED_FIELD_DATA_H
+#define DDGI_SHARED_FIELD_DATA_H
+
+#include "shared/interop.h"
+
+DDGI_NAMESPACE_BEGIN
+
+// Set 2: what sampling the field needs (frame kernels and field kernels).
+DDGI_CONST uint kFieldSet = 2;
+DDGI_CONST uint kFieldBindingConstants = 0;   // FieldConstants (one)
+DDGI_CONST uint kFieldBindingProbes = 1;      // ProbeState per probe
+DDGI_CONST uint kFieldBindingIrradiance = 2;  // sampler2D, RGBA32F, encoded irradiance
+DDGI_CONST uint kFieldBindingDistance = 3;    // sampler2D, RG32F, mean distance and its square
+
+// Set 1 of the field-update kernels: the rays and the atlases as storage images.
+DDGI_CONST uint kFieldUpdateSet = 1;
+DDGI_CONST uint kFieldUpdateBindingRays = 0;           // ProbeRay per traced ray
+DDGI_CONST uint kFieldUpdateBindingIrradianceOut = 1;  // image2D view of the irradiance atlas
+DDGI_CONST uint kFieldUpdateBindingDistanceOut = 2;    // image2D view of the distance atlas
+
+// Atlas layout: probe p's tile is (p % tiles_per_row, p / tiles_per_row); a tile is the
+// octahedral map plus a one-texel border copied from the opposite edges.
+DDGI_CONST uint kAtlasBorder = 1u;
+DDGI_CONST uint kMaxAtlasDimension = 16384u;
+
+// ProbeState::flags
+DDGI_CONST uint kProbeResetHistory = 1u;  // no valid history: the next blend uses hysteresis 0
+
+// ProbeRay::flags
+DDGI_CONST uint kRayHit = 1u;
+DDGI_CONST uint kRayFrontFace = 2u;
+
+struct ProbeState {
+  vec3 offset;  // from the grid position (relocation); zero until relocation runs
+  uint flags;
+};
+
+// One traced probe ray: the surfel it found (trace pass), then its radiance (shade pass).
+struct ProbeRay {
+  vec3 position;     // hit point
+  float distance;    // hit distance; max_ray_distance on a miss
+  vec3 albedo;
+  uint normal_oct;   // shading normal on the side the ray sees
+  vec3 emission;
+  uint flags;        // kRay*
+  vec3 radiance;     // towards the probe; 0 for back faces
+  uint geometric_normal_oct;
+};
+
+struct FieldConstants {
+  vec3 origin;
+  uint rays_per_probe;       // shaded and blended
+  vec3 spacing;
+  uint fixed_rays;           // traced first, never rotated, never blended
+  ivec3 counts;
+  uint probe_count;
+  uint irradiance_texels;
+  uint distance_texels;
+  uint tiles_per_row;
+  uint update_index;
+  vec2 irradiance_atlas_size;  // texels
+  vec2 distance_atlas_size;    // texels
+  float hysteresis;
+  float distance_hysteresis;
+  float change_threshold;
+  float new_distribution_threshold;
+  float irradiance_gamma;
+  float distance_exponent;
+  float backface_distance_scale;
+  float self_shadow_bias;
+  float energy_conservation;
+  float weight_crush_threshold;
+  float max_ray_distance;
+  float max_visibility_distance;  // distances are clamped here: 1.5 x the cell diagonal
+  mat4 ray_rotation;              // this update's random rotation of the blended rays
+  uint direct_mode;               // how probe-ray hits get direct light (frame_data kDirect*)
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// Push constants of the linear (one invocation per item) field kernels.
+struct FieldDispatch {
+  uint count;       // items in this dispatch
+  uint row_width;   // invocations per row when the dispatch is folded into 2D
+  uint pad0;
+  uint pad1;
+};
+
+DDGI_NAMESPACE_END
+
+#endif

@@ -1,0 +1,75 @@
+// The irradiance field on lavapipe: analytic furnace values, both backends, extremes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gi/irradiance_field.h"
+#include "render/gpu_scene.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/gpu/procedural.h"
+
+namespace ddgi::test {
+namespace {
+
+class FieldTest : public GpuTest {
+ protected:
+  struct Setup {
+    std::unique_ptr<GpuScene> scene;
+    std::unique_ptr<IrradianceField> field;
+  };
+  Setup make(const Scene& scene, const IrradianceFieldParams& params, vk::TraceBackend backend) {
+    Setup s;
+    auto gpu = GpuScene::create(context(), scene);
+    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
+    s.scene = std::move(gpu).value();
+    auto field = IrradianceField::create(context(), *s.scene, params, backend);
+    EXPECT_TRUE(field.ok()) << field.error().message;
+    s.field = std::move(field).value();
+    return s;
+  }
+};
+
+// Points well inside the furnace box, normals along the six axes.
+std::vector<IrradianceQuery> furnace_queries() {
+  std::vector<IrradianceQuery> queries;
+  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (glm::vec3 p :
+       {glm::vec3(0, 1, 0), glm::vec3(0.4f, 0.6f, -0.3f), glm::vec3(-0.5f, 1.5f, 0.5f)}) {
+    for (const glm::vec3& n : axes) queries.push_back({p, n, n});
+  }
+  return queries;
+}
+
+// White furnace: every surface emits Le and reflects rho, so radiance is Le / (1 - rho)
+// everywhere and the field's M (= E / pi) must converge to it.
+class FurnaceTest : public FieldTest,
+                    public ::testing::WithParamInterface<std::tuple<float, vk::TraceBackend>> {};
+
+TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
+  const auto [rho, backend] = GetParam();
+  const float le = 1.0f;
+  IrradianceFieldParams params;
+  params.origin = {-0.5f, 0.5f, -0.5f};
+  params.spacing = {1.0f, 1.0f, 1.0f};
+  params.counts = {2, 2, 2};
+  params.rays_per_probe = 64;
+  params.hysteresis = 0.5f;  // converge in few updates; the bounce series needs ~log(0.01)/log(rho)
+  Setup s = make(make_white_furnace_box(rho, le), params, backend);
+  // Each update adds one bounce: after n updates the error is about rho^n.
+  const uint32_t updates = static_cast<uint32_t>(std::ceil(std::log(0.002) / std::log(rho))) + 12;
+  ASSERT_TRUE(s.field->update(updates, DirectMode::kTracedShadows).ok());
+  auto answers = s.field->query(furnace_queries());
+  ASSERT_TRUE(answers.ok()) << answers.error().message;
+  const float expected = le / (1.0f - rho);
+  for (const glm::vec3& m : *answers) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], expected, 0.02f * expected);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Albedos, FurnaceTest,
+                         ::testing::Combine(::testing::Values(0.2f, 0.5f, 0.8f),
+                                            ::testing::Values(vk::TraceBackend::kRayQuery,
+                                                              vk::TraceBackend::kPipeline)));
+
+}  // namespace
+}  // namespace ddgi::test
