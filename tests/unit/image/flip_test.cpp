@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -6,6 +8,8 @@
 #include "metrics/color.h"
 #include "metrics/colormap.h"
 #include "metrics/flip.h"
+#include "metrics/flip_csf.h"
+#include "metrics/flip_features.h"
 #include "test_images.h"
 
 namespace ddgi::metrics {
@@ -98,6 +102,98 @@ TEST(Flip, MidGreyVersusBlackUsesTheLowerBranchOfTheRemap) {
   const double expected = expected_flat_error(lightness);
   EXPECT_NEAR(expected, 0.9315, 1e-4);
   EXPECT_NEAR(flip(grey.view(), black.view())->mean, expected, 1e-4);
+}
+
+// One pixel's FLIP error recomposed from the public stages and the paper's formulas: colour =
+// remap(HyAB(Hunt(Lab(clamp(RGB(CSF(YCxCz)))))) ), feature = (max(|d edge|, |d point|) / sqrt
+// 2)^0.5, error = colour^(1 - feature). Also reports how far out of gamut the filtered reference
+// got.
+struct PixelBreakdown {
+  double color = 0.0;
+  double feature = 0.0;
+  double error = 0.0;
+  double most_out_of_gamut = 0.0;  // largest distance of a filtered linear RGB value outside [0,1]
+};
+
+PixelBreakdown recompose(const TestImage& reference, const TestImage& test, uint32_t x, uint32_t y,
+                         double ppd) {
+  const auto opponent = [](const TestImage& image) {
+    std::array<Plane, 3> planes{Plane(image.width, image.height), Plane(image.width, image.height),
+                                Plane(image.width, image.height)};
+    for (size_t i = 0; i < planes[0].values.size(); ++i) {
+      const Color3 ycxcz = xyz_to_ycxcz(
+          linear_rgb_to_xyz({srgb_to_linear(image.rgb[i * 3]), srgb_to_linear(image.rgb[i * 3 + 1]),
+                             srgb_to_linear(image.rgb[i * 3 + 2])}));
+      planes[0].values[i] = ycxcz.c0;
+      planes[1].values[i] = ycxcz.c1;
+      planes[2].values[i] = ycxcz.c2;
+    }
+    return planes;
+  };
+  PixelBreakdown out;
+  const auto filtered_lab = [&](const std::array<Plane, 3>& planes) {
+    const Color3 ycxcz{csf_filter(planes[0], OpponentChannel::kAchromatic, ppd).at(x, y),
+                       csf_filter(planes[1], OpponentChannel::kRedGreen, ppd).at(x, y),
+                       csf_filter(planes[2], OpponentChannel::kBlueYellow, ppd).at(x, y)};
+    Color3 rgb = xyz_to_linear_rgb(ycxcz_to_xyz(ycxcz));
+    for (double* c : {&rgb.c0, &rgb.c1, &rgb.c2}) {
+      out.most_out_of_gamut = std::max({out.most_out_of_gamut, -*c, *c - 1.0});
+      *c = std::clamp(*c, 0.0, 1.0);
+    }
+    return hunt_adjust(xyz_to_lab(linear_rgb_to_xyz(rgb)));
+  };
+  const auto features = [&](const std::array<Plane, 3>& planes) {
+    Plane luminance = planes[0];
+    for (double& v : luminance.values) v = (v + 16.0) / 116.0;
+    return detect_features(luminance, ppd);
+  };
+  const std::array<Plane, 3> ref_planes = opponent(reference);
+  const std::array<Plane, 3> test_planes = opponent(test);
+  const double out_of_gamut_test_only = out.most_out_of_gamut;
+  out.color = expected_flat_error(hyab(filtered_lab(ref_planes), filtered_lab(test_planes)));
+  out.most_out_of_gamut = std::max(out.most_out_of_gamut, out_of_gamut_test_only);
+  const Features ref_features = features(ref_planes);
+  const Features test_features = features(test_planes);
+  const double edge = std::abs(ref_features.edges.at(x, y) - test_features.edges.at(x, y));
+  const double point = std::abs(ref_features.points.at(x, y) - test_features.points.at(x, y));
+  out.feature = std::sqrt(std::max(edge, point) / std::numbers::sqrt2);
+  out.error = std::pow(out.color, 1.0 - out.feature);
+  return out;
+}
+
+TEST(Flip, VanishingLineIsAmplifiedByTheFeatureTerm) {
+  // A faint one-pixel line removed: the CSF blurs most of its colour difference away, but the
+  // point detector sees it vanish, and the feature term raises the error well above the colour
+  // term alone.
+  TestImage with_line = constant_image(33, 33, 0.5f, 0.5f, 0.5f);
+  for (uint32_t y = 0; y < 33; ++y) {
+    for (uint32_t c = 0; c < 3; ++c) with_line.at(16, y, c) = 0.7f;
+  }
+  const TestImage without_line = constant_image(33, 33, 0.5f, 0.5f, 0.5f);
+  const PixelBreakdown expected = recompose(with_line, without_line, 16, 16, 67.0);
+  EXPECT_GT(expected.feature, 0.2);
+  EXPECT_GT(expected.error, expected.color + 0.05);
+  Result<FlipResult> result = flip(with_line.view(), without_line.view());
+  ASSERT_TRUE(result.ok());
+  EXPECT_NEAR(result->error_map[16 * 33 + 16], expected.error, 1e-5);
+  // Beside the line the point detector answers with the opposite sign: check one pixel over too.
+  EXPECT_NEAR(result->error_map[16 * 33 + 18],
+              recompose(with_line, without_line, 18, 16, 67.0).error, 1e-5);
+}
+
+TEST(Flip, FilteredColoursAreClampedToTheDisplayGamut) {
+  // A yellow line on blue: luminance is filtered narrowly and blue-yellow widely, so at the line
+  // the filtered colour leaves the RGB cube and must be clamped before L*a*b*.
+  TestImage line = constant_image(33, 33, 0.0f, 0.0f, 1.0f);
+  for (uint32_t y = 0; y < 33; ++y) {
+    line.at(16, y, 0) = 1.0f;
+    line.at(16, y, 1) = 1.0f;
+    line.at(16, y, 2) = 0.0f;
+  }
+  const TestImage plain = constant_image(33, 33, 0.0f, 0.0f, 1.0f);
+  const PixelBreakdown expected = recompose(line, plain, 16, 16, 67.0);
+  EXPECT_GT(expected.most_out_of_gamut, 0.05);
+  EXPECT_NEAR(flip(line.view(), plain.view())->error_map[16 * 33 + 16], expected.error, 1e-5);
 }
 
 TEST(Flip, MapMatchesImageSizeAndStaysInUnitRange) {
