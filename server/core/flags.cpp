@@ -55,7 +55,7 @@ Result<Flags> Flags::parse(int argc, char** argv, const std::vector<std::string>
       if (value && *value != "true" && *value != "false") {
         return invalid_argument("--" + name + " takes no value (or =true/=false)");
       }
-      if (!value || *value == "true") flags.values_[name] = "true";
+      if (!value || *value == "true") flags.values_[name] = {"true"};
       continue;
     }
     if (!known(name)) return invalid_argument("unknown flag --" + name + " (see --help)");
@@ -63,24 +63,30 @@ Result<Flags> Flags::parse(int argc, char** argv, const std::vector<std::string>
       if (i + 1 >= argc) return invalid_argument("--" + name + " needs a value");
       value = argv[++i];
     }
-    flags.values_[name] = *value;
+    flags.values_[name].push_back(*value);
   }
   return flags;
 }
 
 Result<std::string> Flags::get_string(const std::string& name, const std::string& fallback) const {
   const auto it = values_.find(name);
-  return it == values_.end() ? fallback : it->second;
+  return it == values_.end() ? fallback : it->second.back();
+}
+
+std::vector<std::string> Flags::get_all(const std::string& name) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? std::vector<std::string>{} : it->second;
 }
 
 Result<double> Flags::get_double(const std::string& name, double fallback, double min,
                                  double max) const {
   const auto it = values_.find(name);
   if (it == values_.end()) return fallback;
-  DDGI_ASSIGN_OR_RETURN(const double value, parse_double(it->second, "--" + name));
+  const std::string& text = it->second.back();
+  DDGI_ASSIGN_OR_RETURN(const double value, parse_double(text, "--" + name));
   if (value < min || value > max) {
     std::ostringstream out;
-    out << "--" << name << " must be in [" << min << ", " << max << "] (got " << it->second << ")";
+    out << "--" << name << " must be in [" << min << ", " << max << "] (got " << text << ")";
     return invalid_argument(out.str());
   }
   return value;
@@ -90,10 +96,11 @@ Result<int64_t> Flags::get_int(const std::string& name, int64_t fallback, int64_
                                int64_t max) const {
   const auto it = values_.find(name);
   if (it == values_.end()) return fallback;
-  DDGI_ASSIGN_OR_RETURN(const int64_t value, parse_int(it->second, "--" + name));
+  const std::string& text = it->second.back();
+  DDGI_ASSIGN_OR_RETURN(const int64_t value, parse_int(text, "--" + name));
   if (value < min || value > max) {
     return invalid_argument("--" + name + " must be in [" + std::to_string(min) + ", " +
-                            std::to_string(max) + "] (got " + it->second + ")");
+                            std::to_string(max) + "] (got " + text + ")");
   }
   return value;
 }
@@ -103,7 +110,8 @@ Result<std::vector<double>> Flags::get_doubles(const std::string& name, size_t m
   std::vector<double> values;
   const auto it = values_.find(name);
   if (it == values_.end()) return values;
-  std::stringstream stream(it->second);
+  const std::string& text = it->second.back();
+  std::stringstream stream(text);
   std::string item;
   while (std::getline(stream, item, ',')) {
     DDGI_ASSIGN_OR_RETURN(const double v, parse_double(item, "--" + name));
@@ -112,7 +120,7 @@ Result<std::vector<double>> Flags::get_doubles(const std::string& name, size_t m
   if (values.size() < min_count || values.size() > max_count) {
     return invalid_argument("--" + name + " needs " + std::to_string(min_count) +
                             (min_count == max_count ? "" : " to " + std::to_string(max_count)) +
-                            " comma-separated numbers (got '" + it->second + "')");
+                            " comma-separated numbers (got '" + text + "')");
   }
   return values;
 }

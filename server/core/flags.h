@@ -26,12 +26,14 @@ class Flags {
   Result<double> get_double(const std::string& name, double fallback, double min, double max) const;
   Result<int64_t> get_int(const std::string& name, int64_t fallback, int64_t min,
                           int64_t max) const;
+  // Every value of a flag given several times, in order.
+  std::vector<std::string> get_all(const std::string& name) const;
   // A comma-separated list of exactly `count` finite numbers ("1,2,3").
   Result<std::vector<double>> get_doubles(const std::string& name, size_t min_count,
                                           size_t max_count) const;
 
  private:
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> values_;  // a flag may repeat
   std::vector<std::string> positional_;
 };
 

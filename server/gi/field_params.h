@@ -84,9 +84,10 @@ struct IrradianceFieldParams {
 // Errors name the field and its allowed range.
 Status validate(const IrradianceFieldParams& params);
 
-// A grid fitted to `bounds`: about `target_probes` probes, cell-centred (probes sit half a
+// A grid fitted to `bounds`: about `target_probes` probes (512: 8x8x8 for a cube, enough for a
+// room, cheap enough for a CPU device; pass more for large scenes), cell-centred (probes sit half a
 // spacing inside the bounds, so a room's probes are not on its walls), at least 1 per axis.
-IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes = 4096,
+IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes = 512,
                                          IrradianceFieldParams base = {});
 
 // The grid the scene asks for (sidecar `probe_grid`), else one fitted to its bounds.

@@ -92,6 +92,14 @@ Status Renderer::create_kernels() {
   DDGI_ASSIGN_OR_RETURN(
       direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
                                   backend_));
+  if (field_) {
+    const std::vector<VkDescriptorSetLayout> with_field = {scene_.layout(), frame_layout_.handle(),
+                                                           field_->sampling_layout()};
+    DDGI_ASSIGN_OR_RETURN(
+        indirect_,
+        vk::Kernel::create(
+            context_, {"indirect", false, with_field, sizeof(gpu::IndirectConstants)}, backend_));
+  }
   DDGI_ASSIGN_OR_RETURN(
       tonemap_,
       vk::Kernel::create(context_, {"tonemap", false, layouts, sizeof(gpu::TonemapConstants)},

@@ -7,10 +7,12 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
+#include "gi/field_param_table.h"
+#include "gi/irradiance_field.h"
 #include "render/camera_fit.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
-#include "scene/load_scene.h"
+#include "scene/gltf_loader.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -31,7 +33,11 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
   --tonemap T           aces | reinhard | clamp                         [aces]
   --exposure X          linear multiplier before tone mapping           [1]
   --jpeg-quality Q      1..100                                          [90]
-  --frames N            render N times and report median pass times     [1]
+  --gi on|off           indirect light from a DDGI irradiance field      [on]
+  --warmup N            field updates before the first frame             [64]
+  --field NAME=VALUE    set a field parameter (repeatable); --field help lists them
+                        [grid from the scene's sidecar, else fitted to its bounds]
+  --frames N            render N times (one field update each) and report median times [1]
   --device NAME         use the Vulkan device whose name contains NAME
   --validation          enable Vulkan validation layers
   --log-level L         debug | info | warning | error                  [info]
@@ -94,8 +100,21 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
   DDGI_ASSIGN_OR_RETURN(const std::vector<double> camera_values, flags.get_doubles("camera", 6, 7));
 
+  DDGI_ASSIGN_OR_RETURN(const std::string gi, flags.get_string("gi", "on"));
+  if (gi != "on" && gi != "off") return invalid_argument("--gi must be on or off");
+  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 64, 0, 100000));
+  const std::vector<std::string> field_assignments = flags.get_all("field");
+  if (!field_assignments.empty() && field_assignments.front() == "help") {
+    for (const FieldParamInfo& info : field_param_infos()) {
+      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
+    }
+    return ok_status();
+  }
+
   DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
   for (const std::string& warning : scene.warnings) LOG_WARNING << scene_path << ": " << warning;
+  IrradianceFieldParams field_params = default_field_params(scene);
+  DDGI_TRY(apply_field_assignments(field_params, field_assignments));
   settings.camera = default_camera(scene);
   if (!camera_values.empty()) {
     DDGI_ASSIGN_OR_RETURN(settings.camera, camera_from_values(camera_values, settings.camera));
@@ -107,11 +126,24 @@ Status run(int argc, char** argv) {
   options.backend = forced_backend;
   DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
   DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
-  DDGI_ASSIGN_OR_RETURN(auto renderer,
-                        Renderer::create(*context, *gpu_scene, context->default_backend()));
+  std::unique_ptr<IrradianceField> field;
+  if (gi == "on") {
+    DDGI_ASSIGN_OR_RETURN(field, IrradianceField::create(*context, *gpu_scene, field_params,
+                                                         context->default_backend()));
+  }
+  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(*context, *gpu_scene, field.get(),
+                                                        context->default_backend()));
   LOG_INFO << "scene " << scene_path << ": " << gpu_scene->triangle_count() << " triangles, "
            << scene.lights.size() << " lights, " << gpu_scene->gpu_bytes() / (1 << 20)
            << " MiB on the GPU";
+  if (field) {
+    const IrradianceFieldParams& p = field->params();
+    LOG_INFO << "irradiance field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
+             << " probes, " << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
+             << field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
+    const auto warm = field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
+    if (!warm.ok()) return warm.error();
+  }
 
   FrameResult frame;
   std::vector<std::vector<double>> pass_ms;
@@ -139,14 +171,20 @@ Status run(int argc, char** argv) {
 
   std::printf("%s: %ux%u, backend %s, device %s\n", out_path.c_str(), frame.width, frame.height,
               vk::backend_name(renderer->backend()), context->caps().device_name.c_str());
-  std::printf("%-12s %12s\n", "pass", frames > 1 ? "median ms" : "ms");
-  double total = 0.0;
+  std::printf("%-18s %12s\n", "pass", frames > 1 ? "median ms" : "ms");
+  double total = 0.0, field_ms = 0.0;
   for (size_t p = 0; p < frame.pass_times.size(); ++p) {
     const double ms = median(pass_ms[p]);
     total += ms;
-    std::printf("%-12s %12.3f\n", frame.pass_times[p].name.c_str(), ms);
+    if (p < 5 && field) field_ms += ms;
+    std::printf("%-18s %12.3f\n", frame.pass_times[p].name.c_str(), ms);
   }
-  std::printf("%-12s %12.3f\n", "total", total);
+  std::printf("%-18s %12.3f\n", "total", total);
+  if (field && field_ms > 0.0) {
+    std::printf("field update: %.3f ms, %llu rays, %.1f Mrays/s\n", field_ms,
+                static_cast<unsigned long long>(field->rays_per_update()),
+                double(field->rays_per_update()) / (field_ms * 1e3));
+  }
   if (context->validation_message_count() > 0) {
     return internal_error(std::to_string(context->validation_message_count()) +
                           " Vulkan validation messages (see above)");
