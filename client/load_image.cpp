@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace ddgi::client {
 
 namespace {
 
+// In double, so that 1.0 maps to exactly 1.0 (the float version is off by one ulp).
 double srgb_encode(double linear) {
   if (linear <= 0.0031308) return 12.92 * linear;
   return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
@@ -19,7 +21,7 @@ double srgb_encode(double linear) {
 
 Result<DisplayImage> load_display_image(const std::string& path, double exposure_stops) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
+  if (!std::filesystem::exists(path, ec)) {
     return not_found(path + ": no such file");
   }
   std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);

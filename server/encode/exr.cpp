@@ -6,6 +6,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 
+#include <climits>
 #include <exception>
 #include <filesystem>
 
@@ -26,6 +27,10 @@ Error exr_error(const std::string& path, const std::exception& e) {
 
 Status write_exr(const std::string& path, const ImageRgbF& image) {
   if (Status valid = validate(image); !valid.ok()) return valid.error().with_context(path);
+  if (image.width > INT_MAX || image.height > INT_MAX) {
+    return invalid_argument(path +
+                            ": too large for EXR: " + size_string(image.width, image.height));
+  }
   try {
     const int width = static_cast<int>(image.width);
     const int height = static_cast<int>(image.height);

@@ -40,7 +40,8 @@ float srgb_to_linear(float encoded) {
 
 float linear_to_srgb(float linear) {
   if (linear <= 0.0031308f) return linear * 12.92f;
-  return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+  // In double so that 1 maps to exactly 1 (in float it lands one ulp short).
+  return static_cast<float>(1.055 * std::pow(double{linear}, 1.0 / 2.4) - 0.055);
 }
 
 ImageRgba8 to_srgb8(const ImageRgbF& image) {

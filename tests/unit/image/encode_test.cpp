@@ -213,7 +213,8 @@ TEST(Image, SrgbConversionRoundTripsEveryCode) {
   }
   EXPECT_EQ(to_srgb8(to_linear(all_codes)).pixels, all_codes.pixels);
   // The transfer function's known points.
-  EXPECT_FLOAT_EQ(srgb_to_linear(1.0f), 1.0f);
+  EXPECT_EQ(srgb_to_linear(1.0f), 1.0f);
+  EXPECT_EQ(linear_to_srgb(1.0f), 1.0f);
   EXPECT_FLOAT_EQ(srgb_to_linear(0.0f), 0.0f);
   EXPECT_NEAR(srgb_to_linear(0.5f), 0.2140f, 1e-4f);
 }
