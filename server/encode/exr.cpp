@@ -9,8 +9,7 @@
 #include <climits>
 #include <exception>
 #include <filesystem>
-
-#include "encode/jpeg.h"  // kMaxDecodePixels
+#include <string>
 
 namespace ddgi::encode {
 

@@ -25,6 +25,9 @@ struct ImageRgbF {
   std::vector<float> rgb;
 };
 
+// Decoders refuse larger images so a hostile header cannot make us allocate gigabytes.
+inline constexpr uint64_t kMaxDecodePixels = uint64_t{1} << 27;  // 134 M pixels, 512 MiB RGBA
+
 // "640x480", the form every size-related error message uses.
 std::string size_string(uint32_t width, uint32_t height);
 

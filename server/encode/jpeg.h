@@ -18,10 +18,7 @@ enum class JpegChroma { k420, k444 };
 Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality,
                                          JpegChroma chroma = JpegChroma::k420);
 
-// Any baseline/progressive JPEG -> RGBA with alpha 255. Refuses images over kMaxDecodePixels
-// so a hostile header cannot make us allocate gigabytes.
+// Any baseline/progressive JPEG -> RGBA with alpha 255; refuses images over kMaxDecodePixels.
 Result<ImageRgba8> decode_jpeg(std::span<const uint8_t> bytes);
-
-inline constexpr uint64_t kMaxDecodePixels = uint64_t{1} << 27;  // 134 M pixels, 512 MiB RGBA
 
 }  // namespace ddgi::encode

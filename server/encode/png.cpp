@@ -8,8 +8,6 @@
 #include <memory>
 #include <string>
 
-#include "encode/jpeg.h"  // kMaxDecodePixels
-
 namespace ddgi::encode {
 
 namespace {

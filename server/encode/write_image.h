@@ -16,7 +16,7 @@ enum class ImageFormat { kJpeg, kPng, kExr };
 Result<ImageFormat> format_from_path(const std::string& path);
 
 struct WriteOptions {
-  int jpeg_quality = 90;                      // visually lossless for renders, ~1/10 of PNG size
+  int jpeg_quality = 90;  // artefacts hard to see on renders, far below PNG size
   JpegChroma jpeg_chroma = JpegChroma::k420;  // the common default; use k444 for sharp UI text
 };
 

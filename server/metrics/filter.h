@@ -1,4 +1,4 @@
-// Single-channel float planes and separable convolution, shared by SSIM and FLIP.
+// Single-channel planes and separable convolution, shared by SSIM and FLIP.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +18,7 @@ struct Plane {
   double at(uint32_t x, uint32_t y) const { return values[size_t{y} * width + x]; }
 };
 
-// A symmetric-or-not 1-D kernel of odd length 2r+1; taps[r] is the centre.
+// A 1-D kernel of odd length 2r+1; taps[r] is the centre (derivative kernels are odd).
 struct Kernel1D {
   std::vector<double> taps;
   int radius() const { return static_cast<int>(taps.size() / 2); }
