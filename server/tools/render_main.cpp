@@ -57,11 +57,12 @@ double median(std::vector<double> values) {
 }
 
 Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
-                                                  {"out", "width", "height", "camera", "backend",
-                                                   "view", "direct", "tonemap", "exposure",
-                                                   "jpeg-quality", "frames", "device", "log-level"},
-                                                  {"validation", "help"}));
+  DDGI_ASSIGN_OR_RETURN(
+      Flags flags, Flags::parse(argc, argv,
+                                {"out", "width", "height", "camera", "backend", "view", "direct",
+                                 "tonemap", "exposure", "jpeg-quality", "frames", "device",
+                                 "log-level", "gi", "warmup", "field"},
+                                {"validation", "help"}));
   if (flags.has("help")) {
     std::fputs(kUsage, stdout);
     return ok_status();

@@ -1,0 +1,108 @@
+// Scene files through the loader and the renderer on lavapipe: the repo's scenes and the real
+// scenes in ../shared/scenes render on both tracing backends, and the backends agree.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "render/camera_fit.h"
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "scene/gltf_loader.h"
+#include "tests/gpu/gpu_test.h"
+
+namespace ddgi::test {
+namespace {
+
+const std::string kRepo = DDGI_SOURCE_DIR;
+
+struct BackendPair {
+  FrameResult query;
+  FrameResult pipeline;
+};
+
+class SceneRenderTest : public GpuTest {
+ protected:
+  BackendPair render_both(const std::string& path, uint32_t width, uint32_t height) {
+    auto scene = load_scene(path);
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    if (!scene.ok()) return {};
+    auto gpu = GpuScene::create(context(), *scene);
+    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
+    if (!gpu.ok()) return {};
+    FrameSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.camera = default_camera(*scene);
+    BackendPair pair;
+    for (vk::TraceBackend backend : {vk::TraceBackend::kRayQuery, vk::TraceBackend::kPipeline}) {
+      auto renderer = Renderer::create(context(), **gpu, nullptr, backend);
+      EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+      if (!renderer.ok()) return {};
+      auto frame = (*renderer)->render(settings);
+      EXPECT_TRUE(frame.ok()) << frame.error().message;
+      if (!frame.ok()) return {};
+      (backend == vk::TraceBackend::kRayQuery ? pair.query : pair.pipeline) =
+          std::move(frame).value();
+    }
+    return pair;
+  }
+};
+
+// Largest per-channel difference relative to the brighter of the two values (and 1e-3 absolute
+// so black pixels do not divide by zero).
+float max_relative_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  float worst = 0.0f;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const float scale = std::max({std::abs(a[i]), std::abs(b[i]), 1e-3f});
+    worst = std::max(worst, std::abs(a[i] - b[i]) / scale);
+  }
+  return worst;
+}
+
+bool all_finite(const std::vector<float>& v) {
+  return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); });
+}
+
+float mean(const std::vector<float>& v) {
+  double sum = 0.0;
+  for (size_t i = 0; i < v.size(); i += 4) sum += v[i] + v[i + 1] + v[i + 2];
+  return static_cast<float>(sum / (v.size() / 4 * 3));
+}
+
+// The backends trace the same rays against the same structures with the same shading code:
+// they may differ by float rounding only (1e-4 relative).
+constexpr float kBackendTolerance = 1e-4f;
+
+TEST_F(SceneRenderTest, RepoCornellBoxBackendsAgree) {
+  const BackendPair pair = render_both(kRepo + "/scenes/cornell_box.gltf", 64, 48);
+  ASSERT_EQ(pair.query.radiance.size(), size_t(64 * 48 * 4));
+  ASSERT_EQ(pair.pipeline.radiance.size(), pair.query.radiance.size());
+  EXPECT_LE(max_relative_difference(pair.query.radiance, pair.pipeline.radiance),
+            kBackendTolerance);
+  EXPECT_TRUE(all_finite(pair.query.radiance));
+  EXPECT_GT(mean(pair.query.radiance), 0.01f);  // lit, not black
+}
+
+// The real scenes made by others (../shared/scenes), through the repo's sidecars.
+class RealSceneTest : public SceneRenderTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(RealSceneTest, RendersOnBothBackendsAlike) {
+  const std::string path = kRepo + "/scenes/" + GetParam();
+  if (!std::filesystem::exists(kRepo + "/../shared/scenes")) GTEST_SKIP() << "no ../shared/scenes";
+  const BackendPair pair = render_both(path, 48, 27);
+  ASSERT_FALSE(pair.query.radiance.empty());
+  EXPECT_LE(max_relative_difference(pair.query.radiance, pair.pipeline.radiance),
+            kBackendTolerance);
+  EXPECT_TRUE(all_finite(pair.query.radiance));
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, RealSceneTest,
+                         ::testing::Values("cornell_kajiya.ddgi.json", "cornell_nvpro.ddgi.json",
+                                           "lights_punctual.ddgi.json", "veach_ajar.ddgi.json",
+                                           "staircase.ddgi.json", "modern_hall.ddgi.json",
+                                           "living_room.ddgi.json"));
+
+}  // namespace
+}  // namespace ddgi::test
