@@ -17,6 +17,10 @@
 #include "metrics/pixel_error.h"
 #include "test_images.h"
 
+#ifdef DDGI_COMPARE_EXE
+#include "compare_args.h"
+#endif
+
 namespace ddgi {
 namespace {
 
@@ -35,7 +39,7 @@ std::string slurp(const std::filesystem::path& path) {
   return text.str();
 }
 
-CliRun run_compare(const std::filesystem::path& dir, const std::string& arguments) {
+CliRun run_compare(const test::TempDir& dir, const std::string& arguments) {
   const std::filesystem::path out = dir / "stdout.txt";
   const std::filesystem::path err = dir / "stderr.txt";
   const std::string command = std::string("'") + DDGI_COMPARE_EXE + "' " + arguments + " >'" +
@@ -66,7 +70,7 @@ EightBit eight_bit(const test::TestImage& source) {
 }
 
 TEST(CompareCli, JsonAgreesWithTheLibrary) {
-  const std::filesystem::path dir = test::temp_dir();
+  const test::TempDir dir;
   const EightBit a = eight_bit(test::gradient_image(40, 30));
   const EightBit b = eight_bit(test::add_noise(test::gradient_image(40, 30), 0.1f));
   ASSERT_TRUE(encode::write_image((dir / "a.png").string(), a.image).ok());
@@ -96,7 +100,7 @@ TEST(CompareCli, JsonAgreesWithTheLibrary) {
 }
 
 TEST(CompareCli, IdenticalImagesReportZeroErrorAndNullPsnr) {
-  const std::filesystem::path dir = test::temp_dir();
+  const test::TempDir dir;
   const EightBit a = eight_bit(test::gradient_image(16, 16));
   ASSERT_TRUE(encode::write_image((dir / "a.png").string(), a.image).ok());
   const CliRun run =
@@ -113,7 +117,7 @@ TEST(CompareCli, IdenticalImagesReportZeroErrorAndNullPsnr) {
 TEST(CompareCli, HdrInputIsExposedClippedAndEncoded) {
   // Linear 0.5 at +1 EV becomes exactly 1.0 (white, not clipped); at 0 EV it is sRGB 0.7354.
   // The one value of 8.0 clips either way: 1 of 768 values.
-  const std::filesystem::path dir = test::temp_dir();
+  const test::TempDir dir;
   encode::ImageRgbF hdr{16, 16, std::vector<float>(16 * 16 * 3, 0.5f)};
   hdr.rgb[0] = 8.0f;  // one clipped value of 768
   ASSERT_TRUE(encode::write_exr((dir / "hdr.exr").string(), hdr).ok());
@@ -139,7 +143,7 @@ TEST(CompareCli, HdrInputIsExposedClippedAndEncoded) {
 }
 
 TEST(CompareCli, ErrorsExitWithTwoAndSayWhy) {
-  const std::filesystem::path dir = test::temp_dir();
+  const test::TempDir dir;
   const EightBit a = eight_bit(test::gradient_image(16, 12));
   const EightBit b = eight_bit(test::gradient_image(12, 16));
   ASSERT_TRUE(encode::write_image((dir / "a.png").string(), a.image).ok());
@@ -156,19 +160,46 @@ TEST(CompareCli, ErrorsExitWithTwoAndSayWhy) {
   EXPECT_NE(mismatch.err.find("16x12"), std::string::npos) << mismatch.err;
   EXPECT_NE(mismatch.err.find("12x16"), std::string::npos) << mismatch.err;
 
+  // Argument errors take the same exit path; the parser itself is tested in-process below.
   EXPECT_EQ(run_compare(dir, (dir / "a.png").string()).exit_code, 2);
-  EXPECT_EQ(
-      run_compare(dir, (dir / "a.png").string() + " " + (dir / "a.png").string() + " --ppd banana")
-          .exit_code,
-      2);
   const CliRun bad_map = run_compare(
       dir, (dir / "a.png").string() + " " + (dir / "a.png").string() + " --flip-map out.bmp");
   EXPECT_EQ(bad_map.exit_code, 2);
   EXPECT_NE(bad_map.err.find("out.bmp"), std::string::npos) << bad_map.err;
+}
 
-  const CliRun help = run_compare(dir, "--help");
-  EXPECT_EQ(help.exit_code, 0);
-  EXPECT_NE(help.out.find("--exposure"), std::string::npos);
+TEST(CompareArgs, ParsesOptionsAndRejectsBadOnes) {
+  using client::parse_compare_args;
+  Result<client::CompareArgs> args = parse_compare_args(
+      {"a.exr", "--ppd", "30.5", "b.png", "--json", "--exposure", "-1.5", "--flip-map", "m.png"});
+  ASSERT_TRUE(args.ok()) << args.error().message;
+  EXPECT_EQ(args->reference, "a.exr");
+  EXPECT_EQ(args->test, "b.png");
+  EXPECT_EQ(args->ppd, 30.5);
+  EXPECT_EQ(args->exposure, -1.5);
+  EXPECT_TRUE(args->json);
+  EXPECT_EQ(args->flip_map, "m.png");
+
+  const Result<client::CompareArgs> defaults = parse_compare_args({"a.png", "b.png"});
+  ASSERT_TRUE(defaults.ok());
+  EXPECT_EQ(defaults->ppd, 67.0);
+  EXPECT_EQ(defaults->exposure, 0.0);
+  EXPECT_FALSE(defaults->json);
+  EXPECT_FALSE(defaults->flip_map.has_value());
+
+  EXPECT_TRUE(parse_compare_args({"--help"})->help);
+  EXPECT_NE(client::compare_usage().find("--exposure"), std::string::npos);
+  for (const std::vector<std::string>& bad :
+       std::vector<std::vector<std::string>>{{"a.png"},
+                                             {"a.png", "b.png", "c.png"},
+                                             {"a.png", "b.png", "--ppd", "banana"},
+                                             {"a.png", "b.png", "--ppd", "0"},
+                                             {"a.png", "b.png", "--ppd", "2000"},
+                                             {"a.png", "b.png", "--ppd"},
+                                             {"a.png", "b.png", "--exposure", "1e999"},
+                                             {"a.png", "b.png", "--frobnicate"}}) {
+    EXPECT_FALSE(parse_compare_args(bad).ok()) << bad.back();
+  }
 }
 
 #else

@@ -124,7 +124,8 @@ TEST(Exr, FloatRoundTripIsBitExactIncludingExtremes) {
                             std::numeric_limits<float>::quiet_NaN()};
   ImageRgbF image{4, 3, {}};
   for (size_t i = 0; i < 36; ++i) image.rgb.push_back(specials[i % std::size(specials)]);
-  const std::string path = (test::temp_dir() / "extremes.exr").string();
+  const test::TempDir dir;
+  const std::string path = (dir / "extremes.exr").string();
   ASSERT_TRUE(write_exr(path, image).ok());
   Result<ImageRgbF> read = read_exr(path);
   ASSERT_TRUE(read.ok()) << read.error().message;
@@ -142,7 +143,8 @@ TEST(Exr, ErrorsNameTheFile) {
   EXPECT_EQ(missing.error().code, ErrorCode::kNotFound);
   EXPECT_NE(missing.error().message.find("/nonexistent/dir/missing.exr"), std::string::npos);
 
-  const std::string not_exr = (test::temp_dir() / "not.exr").string();
+  const test::TempDir dir;
+  const std::string not_exr = (dir / "not.exr").string();
   ASSERT_TRUE(write_file(not_exr, std::vector<uint8_t>{'h', 'e', 'l', 'l', 'o'}).ok());
   Result<ImageRgbF> bad = read_exr(not_exr);
   ASSERT_FALSE(bad.ok());
@@ -154,7 +156,7 @@ TEST(Exr, ErrorsNameTheFile) {
 }
 
 TEST(WriteImage, ChoosesEncoderByExtension) {
-  const std::filesystem::path dir = test::temp_dir();
+  const test::TempDir dir;
   const ImageRgba8 image = smooth_rgba(16, 8);
   for (const char* name : {"a.png", "b.PNG", "c.jpg", "d.jpeg", "e.exr"}) {
     const std::string path = (dir / name).string();
@@ -176,7 +178,8 @@ TEST(WriteImage, ChoosesEncoderByExtension) {
 }
 
 TEST(WriteImage, FloatImageToPngClampsWithoutToneMapping) {
-  const std::string path = (test::temp_dir() / "hdr.png").string();
+  const test::TempDir dir;
+  const std::string path = (dir / "hdr.png").string();
   ASSERT_TRUE(write_image(path, ImageRgbF{2, 1, {4.0f, 0.5f, -1.0f, 0.0f, 1.0f, 0.25f}}).ok());
   Result<ImageRgba8> png = decode_png(*read_file(path));
   ASSERT_TRUE(png.ok());
