@@ -1,6 +1,7 @@
 #include "scene/gltf_materials.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "scene/gltf_values.h"
@@ -138,6 +139,10 @@ Result<Material> convert_material(const tinygltf::Model& model, size_t index,
                    o.emissive_strength.value_or(static_cast<float>(strength));
     if (o.transmission) out.transmission = *o.transmission;
     if (o.double_sided) out.double_sided = *o.double_sided;
+  }
+  if (!std::isfinite(out.emissive.x) || !std::isfinite(out.emissive.y) ||
+      !std::isfinite(out.emissive.z)) {
+    return invalid_argument(where + ": emissive factor x strength overflows a float");
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/accessor_reader.h"
+#include "scene/finite.h"
 #include "scene/gltf_values.h"
 
 namespace ddgi {
@@ -29,7 +30,9 @@ Status check_ref(int value, size_t size, const std::string& field, const char* t
 
 Status check_finite(const std::vector<double>& values, const std::string& field) {
   for (double v : values) {
-    if (!std::isfinite(v)) return invalid_argument(field + " contains NaN or infinity");
+    if (!finite_as_float(v)) {
+      return invalid_argument(field + " contains a value that is not finite or beyond float range");
+    }
   }
   return ok_status();
 }
@@ -125,7 +128,7 @@ Status check_materials(const tinygltf::Model& model) {
       return invalid_argument(where + ".alphaMode '" + mat.alphaMode +
                               "' is not OPAQUE, MASK or BLEND");
     }
-    if (!std::isfinite(mat.alphaCutoff) || mat.alphaCutoff < 0.0) {
+    if (!finite_as_float(mat.alphaCutoff) || mat.alphaCutoff < 0.0) {
       return invalid_argument(where + ".alphaCutoff must be a finite number >= 0");
     }
   }
@@ -179,11 +182,11 @@ Status check_cameras_and_lights(const tinygltf::Model& model) {
     if (camera.type != "perspective") continue;
     const std::string where = at("cameras", i) + ".perspective";
     const double yfov = camera.perspective.yfov;
-    if (!std::isfinite(yfov) || yfov <= 0.0 || yfov >= M_PI) {
+    if (!finite_as_float(yfov) || yfov <= 0.0 || yfov >= M_PI) {
       return invalid_argument(where + ".yfov " + std::to_string(yfov) +
                               " must be in (0, pi) radians");
     }
-    if (!std::isfinite(camera.perspective.znear) || camera.perspective.znear <= 0.0) {
+    if (!finite_as_float(camera.perspective.znear) || camera.perspective.znear <= 0.0) {
       return invalid_argument(where + ".znear must be a finite number > 0");
     }
   }
@@ -198,10 +201,10 @@ Status check_cameras_and_lights(const tinygltf::Model& model) {
     for (double c : light.color) {
       if (c < 0.0) return invalid_argument(where + ".color has a negative component");
     }
-    if (!std::isfinite(light.intensity) || light.intensity < 0.0) {
+    if (!finite_as_float(light.intensity) || light.intensity < 0.0) {
       return invalid_argument(where + ".intensity must be a finite number >= 0");
     }
-    if (!std::isfinite(light.range) || light.range < 0.0) {
+    if (!finite_as_float(light.range) || light.range < 0.0) {
       return invalid_argument(where + ".range must be a finite number > 0 (or absent)");
     }
     if (light.type == "spot") {
@@ -209,7 +212,7 @@ Status check_cameras_and_lights(const tinygltf::Model& model) {
       const double outer = light.spot.outerConeAngle;
       // The spec wants inner < outer; inner == outer (a hard edge) is common in exports and
       // harmless, so it passes.
-      if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0 || inner > outer ||
+      if (!finite_as_float(inner) || !finite_as_float(outer) || inner < 0.0 || inner > outer ||
           outer <= 0.0 || outer > M_PI / 2 + 1e-6) {
         return invalid_argument(where + ".spot cone angles (inner " + std::to_string(inner) +
                                 ", outer " + std::to_string(outer) +

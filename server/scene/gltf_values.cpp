@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "scene/finite.h"
+
 namespace ddgi {
 namespace {
 
@@ -23,7 +25,7 @@ Result<std::optional<double>> optional_number(const tinygltf::Value* object, con
                                               const std::string& where) {
   const tinygltf::Value* value = member(object, key);
   if (value == nullptr) return std::optional<double>();
-  if (!value->IsNumber() || !std::isfinite(value->GetNumberAsDouble())) {
+  if (!value->IsNumber() || !finite_as_float(value->GetNumberAsDouble())) {
     return invalid_argument(where + "." + key + " must be a finite number");
   }
   return std::optional<double>(value->GetNumberAsDouble());

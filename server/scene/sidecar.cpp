@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/exr_image.h"
+#include "scene/finite.h"
 #include "scene/json_nesting.h"
 #include "scene/scene_files.h"
 
@@ -82,7 +83,7 @@ constexpr Range kPositive{0.0, HUGE_VAL, true};
 constexpr Range kUnit{0.0, 1.0};
 
 Result<float> read_number(const json& value, const std::string& path, const Range& range) {
-  if (!value.is_number() || !std::isfinite(value.get<double>()) ||
+  if (!value.is_number() || !finite_as_float(value.get<double>()) ||
       !range.contains(value.get<double>())) {
     return expected(path, range.text(), value);
   }
@@ -97,7 +98,7 @@ Result<glm::vec<N, float>> read_vector(const json& value, const std::string& pat
   glm::vec<N, float> result;
   for (int i = 0; i < N; ++i) {
     const json& item = value[static_cast<size_t>(i)];
-    if (!item.is_number() || !std::isfinite(item.get<double>()) ||
+    if (!item.is_number() || !finite_as_float(item.get<double>()) ||
         !range.contains(item.get<double>())) {
       return expected(path, what, value);
     }
@@ -109,7 +110,9 @@ Result<glm::vec<N, float>> read_vector(const json& value, const std::string& pat
 Result<glm::vec3> read_direction(const json& value, const std::string& path) {
   DDGI_ASSIGN_OR_RETURN(const glm::vec3 v, read_vector<3>(value, path, kAny));
   const float length = glm::length(v);
-  if (!(length > 1e-6f)) return expected(path, "a non-zero direction", value);
+  if (!(length > 1e-6f) || !std::isfinite(length)) {
+    return expected(path, "a non-zero direction of finite length", value);
+  }
   return v / length;
 }
 
@@ -153,11 +156,12 @@ Result<Camera> read_camera(const json& value) {
     camera.yfov = 45.0f * kDegrees;
   }
   const glm::vec3 view = target - position;
-  if (!(glm::length(view) > 1e-6f)) {
-    return invalid_argument(path + ": 'position' and 'target' must differ");
+  const float distance = glm::length(view);
+  if (!(distance > 1e-6f) || !std::isfinite(distance)) {
+    return invalid_argument(path + ": 'position' and 'target' must differ (by a finite distance)");
   }
   camera.position = position;
-  camera.forward = glm::normalize(view);
+  camera.forward = view / distance;
   const glm::vec3 orthogonal_up = up - glm::dot(up, camera.forward) * camera.forward;
   if (!(glm::length(orthogonal_up) > 1e-4f)) {
     return invalid_argument(path + ".up: must not be parallel to the view direction");

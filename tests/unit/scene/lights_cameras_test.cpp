@@ -100,6 +100,11 @@ TEST(Lights, InvalidLightsAreRefused) {
   add_light_node(b, 0, json::object());
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("cone angles"));
 
+  // Finite as a double but infinite as the float the Scene stores.
+  b = with_lights({{{"type", "point"}, {"intensity", 1e300}}});
+  add_light_node(b, 0, json::object());
+  EXPECT_THAT(error_of(load_text(b)), HasSubstr("lights[0].intensity must be a finite number"));
+
   b = with_lights({{{"type", "point"}, {"color", {1, 1}}}});
   add_light_node(b, 0, json::object());
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("lights[0].color has 2 values"));

@@ -88,6 +88,11 @@ TEST(Materials, EmissiveStrengthMultipliesTheFactor) {
   b.doc()["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
       "bright";
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("must be a finite number"));
+  b.doc()["materials"][0]["emissiveFactor"] = {1e30, 0, 0};
+  b.doc()["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+      1e30;
+  EXPECT_THAT(error_of(load_text(b)),
+              HasSubstr("materials[0]: emissive factor x strength overflows"));
 }
 
 TEST(Materials, EmitterNobodyUsesIsNotALight) {

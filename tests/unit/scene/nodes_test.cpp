@@ -172,7 +172,11 @@ TEST(Nodes, BadReferencesAndTransformsAreRefused) {
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("nodes[0].rotation is a zero quaternion"));
   b = testing::triangle_builder();
   b.doc()["nodes"][0]["scale"] = {1e300, 1, 1};
-  EXPECT_THAT(error_of(load_text(b)), HasSubstr("world transform is not finite"));
+  EXPECT_THAT(error_of(load_text(b)),
+              HasSubstr("nodes[0].scale contains a value that is not finite"));
+  // Each scale fits a float; their product does not.
+  b = two_level({{"scale", {1e30, 1, 1}}}, {{"scale", {1e30, 1, 1}}});
+  EXPECT_THAT(error_of(load_text(b)), HasSubstr("nodes[1]: the world transform is not finite"));
 }
 
 TEST(Nodes, InstanceLimit) {

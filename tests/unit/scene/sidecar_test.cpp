@@ -280,6 +280,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadSidecar{{{"probe_grid",
                      {{"origin", {0, 0, 0}}, {"spacing", {1, 1, 1}}, {"counts", {2, 513, 2}}}}},
                    "probe_grid.counts"},
+        BadSidecar{{{"probe_grid",
+                     {{"origin", {1e300, 0, 0}}, {"spacing", {1, 1, 1}}, {"counts", {2, 2, 2}}}}},
+                   "probe_grid.origin: expected an array of 3 numbers, each a finite number"},
+        BadSidecar{{{"lights", {{{"type", "directional"}, {"direction", {3e38, 3e38, 0}}}}}},
+                   "lights[0].direction: expected a non-zero direction of finite length"},
         BadSidecar{{{"probe_grid", {{"origin", {0, 0, 0}}}}},
                    "probe_grid: 'origin', 'spacing' and 'counts' are all required"},
         BadSidecar{json::array(), "(top level): expected an object"}));
