@@ -1,0 +1,81 @@
+#include "service/frame_encoder.h"
+
+#include <chrono>
+
+#include "core/log.h"
+#include "encode/jpeg.h"
+#include "service/grpc_status.h"
+
+namespace ddgi::service {
+
+FrameEncoder::FrameEncoder(unsigned threads, Metrics& metrics) : metrics_(metrics) {
+  for (unsigned i = 0; i < std::max(1u, threads); ++i) threads_.emplace_back([this] { work(); });
+}
+
+FrameEncoder::~FrameEncoder() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& thread : threads_) thread.join();
+}
+
+void FrameEncoder::submit(std::unique_ptr<EncodeJob> job) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& queued : queue_) {
+      if (queued->view_key != job->view_key) continue;
+      for (auto& stream : queued->streams) stream->count_drop();
+      job->waiters.insert(job->waiters.begin(), std::make_move_iterator(queued->waiters.begin()),
+                          std::make_move_iterator(queued->waiters.end()));
+      queued = std::move(job);
+      return;
+    }
+    queue_.push_back(std::move(job));
+  }
+  wake_.notify_one();
+}
+
+void FrameEncoder::work() {
+  while (true) {
+    std::unique_ptr<EncodeJob> job;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping and drained
+      job = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    run(*job);
+  }
+}
+
+void FrameEncoder::run(EncodeJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  Result<std::vector<uint8_t>> jpeg = encode::encode_jpeg(job.image, job.quality);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (jpeg.ok() && job.max_frame_bytes && jpeg->size() + 4096 > job.max_frame_bytes) {
+    jpeg = resource_exhausted(
+        "a " + std::to_string(job.frame.width()) + "x" + std::to_string(job.frame.height()) +
+        " frame encoded to " + std::to_string(jpeg->size()) +
+        " bytes, more than the message limit of " + std::to_string(job.max_frame_bytes) +
+        " bytes (--max-message-bytes); lower the size or JPEG quality");
+  }
+  if (!jpeg.ok()) {
+    LOG_WARNING << "frame encoding failed view=" << job.view_key << ": " << jpeg.error().message;
+    for (auto& stream : job.streams) stream->finish(to_grpc(jpeg.error()));
+    for (auto& waiter : job.waiters) waiter(jpeg.error());
+    return;
+  }
+  metrics_.encode_seconds.observe(seconds);
+  auto frame = std::make_shared<v1::Frame>(std::move(job.frame));
+  frame->set_jpeg(jpeg->data(), jpeg->size());
+  frame->set_encode_ms(seconds * 1e3);
+  std::shared_ptr<const v1::Frame> shared = std::move(frame);
+  for (auto& stream : job.streams) stream->offer(shared);
+  for (auto& waiter : job.waiters) waiter(shared);
+}
+
+}  // namespace ddgi::service

@@ -1,0 +1,221 @@
+// ddgi-server: the DDGI render service (proto/ddgi/v1/render_service.proto, docs/service.md).
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "core/flags.h"
+#include "core/log.h"
+#include "service/auth.h"
+#include "service/server.h"
+#include "vk/context.h"
+
+namespace ddgi::service {
+namespace {
+
+constexpr const char* kUsage = R"(usage: ddgi-server [flags]
+
+Serves the DDGI render service over gRPC (docs/service.md). Stops on SIGTERM or SIGINT:
+health turns NOT_SERVING, streams end with OK, the process exits within --shutdown-grace.
+
+  --listen HOST:PORT        where to listen; port 0 picks a free one  [0.0.0.0:50051]
+  --port-file FILE          write the port listened on to FILE (for scripts)
+  --scene-root DIR          the scene library folder                  [the repo's scenes/]
+  --max-sessions N          [8]       --max-views-per-session N  [16]
+  --max-width N             [3840]    --max-height N             [2160]
+  --max-message-bytes N     largest message sent or received       [16777216]
+  --max-upload-bytes N      largest uploaded .glb                  [67108864]
+  --max-query-points N      [65536]   --max-lights N             [256]
+  --max-fps X               frames per second per session, at most [60]
+  --max-warmup-updates N    [1024]
+  --gpu-memory-budget N     bytes of GPU memory for all sessions; K/M/G suffixes  [device size]
+  --no-reflection           turn off gRPC server reflection
+  --tls-cert FILE --tls-key FILE   serve TLS with this PEM certificate chain and key
+  --auth-token-file FILE    require "authorization: Bearer <token>" (token read from FILE)
+  --metrics-port N          Prometheus metrics at http://ADDRESS:N/metrics; -1: off  [9464]
+  --metrics-address A       IPv4 address of the metrics endpoint    [0.0.0.0]
+  --encode-threads N        JPEG encoder threads, 1..64              [2]
+  --shutdown-grace S        seconds for streams and sessions to end  [5]
+  --device NAME             Vulkan device whose name contains NAME
+  --backend B               auto | query | pipeline                  [auto]
+  --validation              Vulkan validation layers (any message is logged)
+  --log-level L             debug | info | warning | error           [info]
+)";
+
+std::string default_scene_root() {
+#ifdef DDGI_DEFAULT_SCENE_ROOT
+  return DDGI_DEFAULT_SCENE_ROOT;
+#else
+  return "scenes";
+#endif
+}
+
+// "512M", "2G", "1048576": bytes.
+Result<uint64_t> parse_bytes(const std::string& text, const std::string& flag) {
+  if (text.empty()) return invalid_argument(flag + " is empty");
+  uint64_t scale = 1;
+  std::string digits = text;
+  const char last = text.back();
+  if (last == 'K' || last == 'k') scale = 1ull << 10;
+  if (last == 'M' || last == 'm') scale = 1ull << 20;
+  if (last == 'G' || last == 'g') scale = 1ull << 30;
+  if (scale != 1) digits.pop_back();
+  DDGI_ASSIGN_OR_RETURN(const int64_t value, parse_int(digits, flag));
+  if (value < 0 || uint64_t(value) > (1ull << 50) / scale) {
+    return invalid_argument(flag + " must be in [0, 1 PiB] (got " + text + ")");
+  }
+  return uint64_t(value) * scale;
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
+                                                  {"listen",
+                                                   "port-file",
+                                                   "scene-root",
+                                                   "max-sessions",
+                                                   "max-views-per-session",
+                                                   "max-width",
+                                                   "max-height",
+                                                   "max-message-bytes",
+                                                   "max-upload-bytes",
+                                                   "max-query-points",
+                                                   "max-lights",
+                                                   "max-fps",
+                                                   "max-warmup-updates",
+                                                   "gpu-memory-budget",
+                                                   "tls-cert",
+                                                   "tls-key",
+                                                   "auth-token-file",
+                                                   "metrics-port",
+                                                   "metrics-address",
+                                                   "encode-threads",
+                                                   "shutdown-grace",
+                                                   "device",
+                                                   "backend",
+                                                   "log-level"},
+                                                  {"no-reflection", "validation", "help"}));
+  if (flags.has("help")) {
+    std::fputs(kUsage, stdout);
+    return ok_status();
+  }
+  if (!flags.positional().empty()) {
+    return invalid_argument("unexpected argument '" + flags.positional()[0] + "' (see --help)");
+  }
+  DDGI_ASSIGN_OR_RETURN(const std::string level_text, flags.get_string("log-level", "info"));
+  LogLevel level;
+  if (!parse_log_level(level_text, &level)) {
+    return invalid_argument("--log-level must be debug, info, warning, error or off");
+  }
+  set_log_level(level);
+
+  ServerOptions options;
+  DDGI_ASSIGN_OR_RETURN(options.listen, flags.get_string("listen", options.listen));
+  DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
+  DDGI_ASSIGN_OR_RETURN(options.scene_root, flags.get_string("scene-root", default_scene_root()));
+  ServiceLimits& l = options.limits;
+  auto get_u32 = [&](const char* name, uint32_t fallback, int64_t max) -> Result<uint32_t> {
+    DDGI_ASSIGN_OR_RETURN(const int64_t value, flags.get_int(name, fallback, 0, max));
+    return static_cast<uint32_t>(value);
+  };
+  DDGI_ASSIGN_OR_RETURN(l.max_sessions, get_u32("max-sessions", l.max_sessions, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_views_per_session,
+                        get_u32("max-views-per-session", l.max_views_per_session, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_width, get_u32("max-width", l.max_width, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_height, get_u32("max-height", l.max_height, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_query_points,
+                        get_u32("max-query-points", l.max_query_points, 1 << 30));
+  DDGI_ASSIGN_OR_RETURN(l.max_lights, get_u32("max-lights", l.max_lights, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_warmup_updates,
+                        get_u32("max-warmup-updates", l.max_warmup_updates, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_fps, flags.get_double("max-fps", l.max_fps, 0.0, 1e6));
+  DDGI_ASSIGN_OR_RETURN(const std::string message_bytes,
+                        flags.get_string("max-message-bytes", std::to_string(l.max_message_bytes)));
+  DDGI_ASSIGN_OR_RETURN(l.max_message_bytes, parse_bytes(message_bytes, "--max-message-bytes"));
+  DDGI_ASSIGN_OR_RETURN(const std::string upload_bytes,
+                        flags.get_string("max-upload-bytes", std::to_string(l.max_upload_bytes)));
+  DDGI_ASSIGN_OR_RETURN(l.max_upload_bytes, parse_bytes(upload_bytes, "--max-upload-bytes"));
+  DDGI_ASSIGN_OR_RETURN(const std::string budget, flags.get_string("gpu-memory-budget", "0"));
+  DDGI_ASSIGN_OR_RETURN(l.gpu_memory_budget_bytes, parse_bytes(budget, "--gpu-memory-budget"));
+  DDGI_TRY(validate(l));
+
+  options.reflection = !flags.has("no-reflection");
+  DDGI_ASSIGN_OR_RETURN(options.tls_cert_file, flags.get_string("tls-cert", ""));
+  DDGI_ASSIGN_OR_RETURN(options.tls_key_file, flags.get_string("tls-key", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string token_file, flags.get_string("auth-token-file", ""));
+  if (!token_file.empty()) {
+    DDGI_ASSIGN_OR_RETURN(options.auth_token, read_token_file(token_file));
+  }
+  DDGI_ASSIGN_OR_RETURN(const int64_t metrics_port, flags.get_int("metrics-port", 9464, -1, 65535));
+  options.metrics_port = static_cast<int>(metrics_port);
+  DDGI_ASSIGN_OR_RETURN(options.metrics_address,
+                        flags.get_string("metrics-address", options.metrics_address));
+  DDGI_ASSIGN_OR_RETURN(const int64_t encode_threads, flags.get_int("encode-threads", 2, 1, 64));
+  options.encode_threads = static_cast<unsigned>(encode_threads);
+  DDGI_ASSIGN_OR_RETURN(const double grace, flags.get_double("shutdown-grace", 5.0, 0.1, 600.0));
+  options.shutdown_grace = std::chrono::milliseconds(static_cast<int64_t>(grace * 1000.0));
+
+  vk::ContextOptions context_options;
+  context_options.validation = flags.has("validation");
+  DDGI_ASSIGN_OR_RETURN(context_options.device_filter, flags.get_string("device", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
+  DDGI_ASSIGN_OR_RETURN(context_options.backend, vk::parse_backend(backend_text));
+  context_options.memory_budget_bytes = l.gpu_memory_budget_bytes;
+
+  // Signals go to one thread that waits for them; every other thread (gRPC's, the frame loops)
+  // inherits the blocked mask, so no handler ever runs inside a lock.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(context_options));
+  DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
+  if (!port_file.empty()) {
+    std::ofstream out(port_file + ".tmp");
+    out << server->port() << "\n";
+    out.close();
+    std::rename((port_file + ".tmp").c_str(), port_file.c_str());  // readers never see half
+  }
+  std::printf("ddgi-server: listening on port %d\n", server->port());
+  std::fflush(stdout);
+
+  int signal_number = 0;
+  sigwait(&signals, &signal_number);
+  LOG_INFO << "received " << (signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
+  // Whatever happens below, the process is gone a little after the grace period.
+  const auto hard_limit = options.shutdown_grace + std::chrono::seconds(5);
+  std::thread([hard_limit] {
+    std::this_thread::sleep_for(hard_limit);
+    std::fprintf(stderr, "ddgi-server: shutdown took too long, exiting\n");
+    _exit(3);
+  }).detach();
+  const bool clean = server->shutdown();
+  if (!clean) {
+    std::fprintf(stderr, "ddgi-server: sessions did not end in time, exiting without cleanup\n");
+    _exit(3);
+  }
+  server.reset();
+  const uint32_t messages = context->validation_message_count();
+  context.reset();
+  if (messages > 0) {
+    return internal_error(std::to_string(messages) + " Vulkan validation messages (see above)");
+  }
+  return ok_status();
+}
+
+}  // namespace
+}  // namespace ddgi::service
+
+int main(int argc, char** argv) {
+  const ddgi::Status status = ddgi::service::run(argc, argv);
+  if (!status.ok()) {
+    std::fprintf(stderr, "ddgi-server: %s\n", status.error().message.c_str());
+    return status.error().code == ddgi::ErrorCode::kInvalidArgument ? 2 : 1;
+  }
+  return 0;
+}

@@ -1,0 +1,67 @@
+// The gRPC server around RenderServiceImpl: listening socket (optionally TLS), message limits,
+// keepalive, the health service, reflection, the metrics endpoint, and an orderly shutdown.
+// ddgi-server's main() and the service tests both start it through here.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "service/frame_encoder.h"
+#include "service/limits.h"
+#include "service/metrics.h"
+#include "service/metrics_http.h"
+#include "service/render_service.h"
+#include "service/session_registry.h"
+#include "vk/context.h"
+
+namespace ddgi::service {
+
+struct ServerOptions {
+  std::string listen = "0.0.0.0:50051";  // host:port; port 0 picks a free one (see port())
+  std::string scene_root;                // the scene library folder
+  ServiceLimits limits;
+  bool reflection = true;
+  std::string tls_cert_file;  // PEM; both or neither
+  std::string tls_key_file;
+  std::string auth_token;  // empty: no auth
+  int metrics_port = -1;   // -1: no metrics endpoint; 0: a free port
+  std::string metrics_address = "0.0.0.0";
+  unsigned encode_threads = 2;
+  std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
+};
+
+class Server {
+ public:
+  static Result<std::unique_ptr<Server>> start(vk::Context& context, ServerOptions options);
+  ~Server();
+
+  int port() const { return port_; }
+  int metrics_port() const { return metrics_http_ ? metrics_http_->port() : -1; }
+  Metrics& metrics() { return metrics_; }
+  SessionRegistry& sessions() { return *sessions_; }
+
+  // Health NOT_SERVING, new sessions and streams refused, sessions closed (streams end with OK),
+  // then the gRPC server stops; bounded by shutdown_grace (plus one second for gRPC). Returns
+  // false when something did not end in time.
+  bool shutdown();
+
+ private:
+  explicit Server(vk::Context& context) : context_(context) {}
+
+  vk::Context& context_;
+  ServerOptions options_;
+  Metrics metrics_;
+  std::unique_ptr<FrameEncoder> encoder_;
+  std::unique_ptr<SessionRegistry> sessions_;
+  std::unique_ptr<RenderServiceImpl> service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<MetricsHttpServer> metrics_http_;
+  int port_ = 0;
+  bool shut_down_ = false;
+};
+
+}  // namespace ddgi::service

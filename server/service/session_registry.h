@@ -1,0 +1,55 @@
+// All sessions of the server, by id. Enforces max_sessions, hands out unguessable ids, and
+// tracks the frame loops so shutdown can wait for them (bounded) before the GPU goes away.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "service/session.h"
+
+namespace ddgi::service {
+
+class SessionRegistry {
+ public:
+  explicit SessionRegistry(SessionEnv env);
+  ~SessionRegistry();
+
+  // Starts a session; RESOURCE_EXHAUSTED beyond max_sessions. `done` runs once the scene is
+  // loaded; when loading fails the session is closed again before `done` sees the error.
+  Status create(SessionOptions options, SceneRequest scene, v1::SessionInfo* reply,
+                Completion done);
+  // INVALID_ARGUMENT for an empty id, NOT_FOUND for an unknown one.
+  Result<std::shared_ptr<Session>> find(const std::string& session_id) const;
+  // Removes the session; `on_closed` runs once its GPU memory is freed.
+  Status close(const std::string& session_id, std::function<void()> on_closed);
+  std::vector<v1::SessionSummary> list() const;
+  size_t size() const;
+
+  // Closes every session and refuses new ones.
+  void close_all();
+  // True when every frame loop ended within `timeout`.
+  bool wait_for_loops(std::chrono::milliseconds timeout);
+
+ private:
+  struct LoopTracker {
+    std::mutex mutex;
+    std::condition_variable done;
+    int live = 0;
+  };
+  std::string new_id();
+
+  SessionEnv env_;
+  std::shared_ptr<LoopTracker> loops_ = std::make_shared<LoopTracker>();
+  mutable std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<Session>> sessions_;
+  size_t reserved_ = 0;  // sessions counted from CreateSession until they load or fail
+  bool closed_ = false;
+};
+
+}  // namespace ddgi::service
