@@ -96,6 +96,21 @@ Scene make_cornell_box() {
   return scene;
 }
 
+void scale_scene(Scene& scene, float s) {
+  const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(s));
+  for (Instance& inst : scene.instances) inst.transform = scale * inst.transform;
+  for (Light& light : scene.lights) {
+    light.position *= s;
+    if (light.type != LightType::kDirectional) light.intensity *= s * s;
+    light.range *= s;
+    light.radius *= s;
+  }
+  for (Camera& camera : scene.cameras) {
+    camera.position *= s;
+    camera.znear *= s;
+  }
+}
+
 Scene make_white_furnace_box(float albedo, float emission) {
   Scene scene;
   scene.source = "procedural white furnace box";

@@ -24,6 +24,11 @@ int add_box(Scene& scene, const glm::mat4& transform, int material);
 // right walls, a tall and a short box, a point light under the ceiling, camera in front.
 Scene make_cornell_box();
 
+// Scales a scene uniformly about the origin: instances, lights (point/spot intensity by s^2,
+// so irradiance at corresponding points is unchanged), cameras. Physics says every radiance
+// stays the same.
+void scale_scene(Scene& scene, float s);
+
 // A closed box (inward faces) with every surface emitting `emission` with albedo `albedo`.
 Scene make_white_furnace_box(float albedo, float emission);
 
