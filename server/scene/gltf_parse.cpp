@@ -6,7 +6,7 @@
 #include "scene/accessor_reader.h"
 #include "scene/glb_container.h"
 #include "scene/image_decode.h"
-#include "scene/json_nesting.h"
+#include "scene/json_precheck.h"
 
 namespace ddgi {
 namespace {
@@ -152,7 +152,7 @@ Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFo
     json_text = chunks.json;
   }
   if (json_text.size() < 2) return invalid_argument("the file is too short to be glTF");
-  DDGI_TRY(check_json_nesting(json_text, limits.max_json_depth));
+  DDGI_TRY(precheck_json(json_text, limits.max_json_depth));
 
   ParseContext ctx;
   ctx.folder = &folder;

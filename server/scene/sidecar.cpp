@@ -10,7 +10,7 @@
 
 #include "scene/exr_image.h"
 #include "scene/finite.h"
-#include "scene/json_nesting.h"
+#include "scene/json_precheck.h"
 #include "scene/scene_files.h"
 
 namespace ddgi {
@@ -395,7 +395,7 @@ Result<Sidecar> parse_document(const json& root, const fs::path& file) {
 Result<Sidecar> parse_sidecar(std::span<const uint8_t> text, const fs::path& file,
                               const SceneLimits& limits) {
   const std::string context = file.string();
-  Status nesting = check_json_nesting(text, limits.max_json_depth);
+  Status nesting = precheck_json(text, limits.max_json_depth);
   if (!nesting.ok()) return nesting.error().with_context(context);
   Result<json> root = parse_json_strict(text);
   if (!root.ok()) return root.error().with_context(context);

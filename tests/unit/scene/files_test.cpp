@@ -117,9 +117,9 @@ TEST(Files, InvalidAndTruncatedJsonAreRefused) {
   const std::string text = testing::triangle_builder().gltf_text();
   const fs::path truncated = dir.write("truncated.gltf", text.substr(0, text.size() / 2));
   EXPECT_THAT(error_of(load_scene(truncated.string())),
-              AllOf(HasSubstr("truncated.gltf"), HasSubstr("invalid glTF")));
+              AllOf(HasSubstr("truncated.gltf"), HasSubstr("invalid JSON")));
   const fs::path garbage = dir.write("garbage.gltf", std::string("{\"asset\": nope}"));
-  EXPECT_THAT(error_of(load_scene(garbage.string())), HasSubstr("invalid glTF"));
+  EXPECT_THAT(error_of(load_scene(garbage.string())), HasSubstr("invalid JSON"));
   const fs::path empty = dir.write("empty.gltf", std::string());
   EXPECT_THAT(error_of(load_scene(empty.string())), HasSubstr("too short"));
   const fs::path no_asset = dir.write("no_asset.gltf", std::string("{\"meshes\": []}"));
@@ -136,6 +136,23 @@ TEST(Files, DeeplyNestedJsonIsRefusedBeforeParsing) {
   // Brackets inside strings do not count.
   doc["extras"] = std::string(1000, '[');
   EXPECT_TRUE(load_gltf_from_memory(testing::to_bytes(doc.dump()), "ok.gltf").ok());
+}
+
+TEST(Files, HugeIntegersAreRefusedOutsideExtras) {
+  // tinygltf narrows indices to int: 4294967296 would silently become mesh 0.
+  json doc = json::parse(testing::triangle_builder().gltf_text());
+  doc["nodes"][0]["mesh"] = 4294967296ull;
+  EXPECT_THAT(error_of(load_gltf_from_memory(testing::to_bytes(doc.dump()), "big.gltf")),
+              HasSubstr("integer 4294967296 (under key 'mesh') is outside"));
+  doc["nodes"][0]["mesh"] = 0;
+  doc["nodes"][0]["extras"] = {{"hash", 18446744073709551615ull},
+                               {"list", {-9223372036854775807ll}}};
+  doc["extras"] = 18446744073709551615ull;
+  Result<Scene> scene = load_gltf_from_memory(testing::to_bytes(doc.dump()), "extras.gltf");
+  EXPECT_TRUE(scene.ok()) << error_of(scene);
+  doc["nodes"][0]["extensions"] = {{"EXT_x", {{"n", -9223372036854775807ll}}}};
+  EXPECT_THAT(error_of(load_gltf_from_memory(testing::to_bytes(doc.dump()), "ext.gltf")),
+              HasSubstr("under key 'n'"));
 }
 
 TEST(Files, FileSizeLimit) {
