@@ -125,8 +125,8 @@ void FrameStreamReactor::OnCancel() {
 
 void FrameStreamReactor::OnDone() {
   state_->reactor_done();
-  metrics_.streams.fetch_sub(1);
   if (on_done_) on_done_();
+  metrics_.streams.fetch_sub(1);  // after on_done_ queued the detach: "0 streams" means gone
   delete this;
 }
 

@@ -242,6 +242,7 @@ void Session::teardown() {
   field_.reset();
   gpu_scene_.reset();
   env_.context->collect_garbage();
+  env_.metrics->sessions.fetch_sub(1);
   LOG_INFO << "session closed session=" << id_ << " frames=" << frame_index_;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -704,8 +705,10 @@ void Session::detach_stream(std::shared_ptr<FrameStreamState> stream) {
           if (view.streams.size() != before) {
             LOG_INFO << "stream detached session=" << id_ << " view=" << view_id
                      << " dropped=" << stream->dropped();
-            if (view.owned_by_stream && view.streams.empty()) orphans.push_back(view_id);
           }
+          // The frame loop may have dropped the ended stream already; either way a view made
+          // for a stream goes with it.
+          if (view.owned_by_stream && view.streams.empty()) orphans.push_back(view_id);
         }
         for (const std::string& view_id : orphans) erase_view(view_id);
         finish(ok_status());

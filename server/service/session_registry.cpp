@@ -46,9 +46,7 @@ Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::S
   }
   env.metrics->sessions.fetch_add(1);
   env.metrics->sessions_created.fetch_add(1);
-  Metrics* metrics = env.metrics;
-  env.on_loop_exit = [tracker, metrics] {
-    metrics->sessions.fetch_sub(1);
+  env.on_loop_exit = [tracker] {
     std::lock_guard<std::mutex> lock(tracker->mutex);
     --tracker->live;
     tracker->done.notify_all();

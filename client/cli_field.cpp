@@ -1,0 +1,207 @@
+// ddgi-client commands for the irradiance field: parameters, atlas dumps, irradiance queries.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "atlas_convert.h"
+#include "cli.h"
+
+namespace ddgi::client {
+namespace {
+
+int params(Cli& cli) {
+  const auto& args = cli.flags.positional();
+  const std::string action = args.size() > 1 ? args[1] : "";
+  DDGI_CLI_TRY(const std::string session, session_flag(cli.flags));
+  v1::FieldParams reply;
+  auto context = cli.context();
+  grpc::Status status;
+  if (action == "get") {
+    if (args.size() > 2) return report(invalid_argument("params get takes no NAME=VALUE"));
+    v1::GetFieldParamsRequest request;
+    request.set_session_id(session);
+    status = cli.stub->GetFieldParams(context.get(), request, &reply);
+  } else if (action == "set") {
+    v1::SetFieldParamsRequest request;
+    request.set_session_id(session);
+    for (size_t i = 2; i < args.size(); ++i) {
+      const auto equals = args[i].find('=');
+      if (equals == std::string::npos) {
+        return report(invalid_argument("params set expects NAME=VALUE (got '" + args[i] + "')"));
+      }
+      auto* p = request.add_params();
+      p->set_name(args[i].substr(0, equals));
+      p->set_value(args[i].substr(equals + 1));
+    }
+    if (request.params().empty()) {
+      return report(invalid_argument("params set needs at least one NAME=VALUE"));
+    }
+    status = cli.stub->SetFieldParams(context.get(), request, &reply);
+  } else {
+    return report(invalid_argument("params needs get or set (got '" + action + "')"));
+  }
+  if (!status.ok()) return report(status);
+  print_json(reply);
+  return 0;
+}
+
+Result<v1::AtlasKind> kind_flag(const Flags& flags) {
+  DDGI_ASSIGN_OR_RETURN(const std::string kind, flags.get_string("kind", "irradiance"));
+  if (kind == "irradiance") return v1::ATLAS_KIND_IRRADIANCE;
+  if (kind == "distance") return v1::ATLAS_KIND_DISTANCE;
+  if (kind == "shadow") return v1::ATLAS_KIND_SHADOW;
+  if (kind == "probe-states") return v1::ATLAS_KIND_PROBE_STATES;
+  return invalid_argument("--kind must be irradiance, distance, shadow or probe-states (got '" +
+                          kind + "')");
+}
+
+int atlas(Cli& cli) {
+  v1::DumpAtlasRequest request;
+  DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
+  DDGI_CLI_TRY(const v1::AtlasKind kind, kind_flag(cli.flags));
+  request.set_kind(kind);
+  DDGI_CLI_TRY(const std::string format, cli.flags.get_string("format", "exr"));
+  if (format == "exr") {
+    request.set_format(v1::ATLAS_FORMAT_EXR);
+  } else if (format == "raw") {
+    request.set_format(v1::ATLAS_FORMAT_RAW_F32);
+  } else {
+    return report(invalid_argument("--format must be exr or raw (got '" + format + "')"));
+  }
+  DDGI_CLI_TRY(const std::string out, cli.flags.get_string("out", ""));
+  if (out.empty()) return report(invalid_argument("--out FILE is required (.exr or .raw)"));
+  DDGI_CLI_TRY(const std::string convert, cli.flags.get_string("convert", ""));
+
+  auto context = cli.context();
+  auto reader = cli.stub->DumpAtlas(context.get(), request);
+  v1::AtlasChunk chunk;
+  v1::AtlasMetadata metadata;
+  bool have_metadata = false;
+  std::string bytes;
+  while (reader->Read(&chunk)) {
+    if (chunk.has_metadata()) {
+      metadata = chunk.metadata();
+      have_metadata = true;
+      bytes.reserve(size_t(std::min<uint64_t>(metadata.total_bytes(), 1ull << 32)));
+      continue;
+    }
+    if (!have_metadata || chunk.offset() != bytes.size() ||
+        bytes.size() + chunk.data().size() > metadata.total_bytes()) {
+      context->TryCancel();
+      (void)reader->Finish();
+      return report(grpc::Status(grpc::StatusCode::DATA_LOSS,
+                                 "atlas chunks out of order or beyond the announced size"));
+    }
+    bytes += chunk.data();
+  }
+  const grpc::Status status = reader->Finish();
+  if (!status.ok()) return report(status);
+  if (!have_metadata || bytes.size() != metadata.total_bytes()) {
+    return report(grpc::Status(grpc::StatusCode::DATA_LOSS,
+                               "atlas ended after " + std::to_string(bytes.size()) + " of " +
+                                   std::to_string(metadata.total_bytes()) + " bytes"));
+  }
+  {
+    std::ofstream file(out, std::ios::binary);
+    file.write(bytes.data(), std::streamsize(bytes.size()));
+    if (!file) return report(unavailable("cannot write " + out));
+    // The metadata beside the dump: for raw floats it is the only description.
+    std::ofstream json(out + ".json");
+    json << to_json(metadata);
+    if (!json) return report(unavailable("cannot write " + out + ".json"));
+  }
+  if (!convert.empty()) {
+    DDGI_CLI_TRY(const AtlasTexels texels, atlas_texels(metadata, bytes, out));
+    if (Status converted = convert_atlas(texels, kind, convert); !converted.ok()) {
+      return report(converted.error());
+    }
+  }
+  print_json(metadata);
+  return 0;
+}
+
+// "px,py,pz,nx,ny,nz" per point, points separated by ';' or new lines.
+Result<std::vector<v1::QueryPoint>> parse_points(const std::string& text) {
+  std::vector<v1::QueryPoint> points;
+  std::string item;
+  std::istringstream stream(text);
+  while (std::getline(stream, item, ';')) {
+    std::istringstream lines(item);
+    std::string line;
+    while (std::getline(lines, line)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      std::vector<double> v;
+      std::istringstream fields(line);
+      std::string field;
+      while (std::getline(fields, field, ',')) {
+        DDGI_ASSIGN_OR_RETURN(const double value, parse_double(field, "query point value"));
+        v.push_back(value);
+      }
+      if (v.size() != 6) {
+        return invalid_argument("a query point is px,py,pz,nx,ny,nz (got '" + line + "')");
+      }
+      v1::QueryPoint point;
+      point.mutable_position()->set_x(float(v[0]));
+      point.mutable_position()->set_y(float(v[1]));
+      point.mutable_position()->set_z(float(v[2]));
+      point.mutable_normal()->set_x(float(v[3]));
+      point.mutable_normal()->set_y(float(v[4]));
+      point.mutable_normal()->set_z(float(v[5]));
+      points.push_back(point);
+    }
+  }
+  return points;
+}
+
+int query(Cli& cli) {
+  v1::QueryIrradianceRequest request;
+  DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
+  DDGI_CLI_TRY(std::string text, cli.flags.get_string("points", ""));
+  DDGI_CLI_TRY(const std::string file, cli.flags.get_string("points-file", ""));
+  if (!file.empty()) {
+    std::ifstream in(file);
+    if (!in) return report(not_found("cannot read " + file));
+    std::ostringstream content;
+    content << in.rdbuf();
+    text += "\n" + content.str();
+  }
+  DDGI_CLI_TRY(const std::vector<v1::QueryPoint> points, parse_points(text));
+  if (points.empty()) {
+    return report(invalid_argument("give --points 'px,py,pz,nx,ny,nz;...' or --points-file"));
+  }
+  for (const v1::QueryPoint& point : points) *request.add_points() = point;
+  v1::QueryIrradianceReply reply;
+  auto context = cli.context();
+  const grpc::Status status = cli.stub->QueryIrradiance(context.get(), request, &reply);
+  if (!status.ok()) return report(status);
+  print_json(reply);
+  return 0;
+}
+
+}  // namespace
+
+void add_field_commands(std::vector<CommandSpec>& commands) {
+  commands.push_back({"params",
+                      "get|set --session ID [NAME=VALUE ...]",
+                      "read or change irradiance-field parameters (the reply has every value "
+                      "in effect)",
+                      {"session"},
+                      {},
+                      params});
+  commands.push_back({"atlas",
+                      "--session ID [--kind irradiance|distance|shadow|probe-states] "
+                      "[--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
+                      "dump a probe atlas (metadata to stdout and FILE.json), optionally "
+                      "converted through OpenImageIO",
+                      {"session", "kind", "format", "out", "convert"},
+                      {},
+                      atlas});
+  commands.push_back({"query",
+                      "--session ID --points 'px,py,pz,nx,ny,nz;...' | --points-file FILE",
+                      "field irradiance (E/pi) at points",
+                      {"session", "points", "points-file"},
+                      {},
+                      query});
+}
+
+}  // namespace ddgi::client
