@@ -35,7 +35,7 @@ GltfBuilder with_material(json material) {
 GltfBuilder with_textured_material(json material) {
   GltfBuilder b = with_material(material);
   b.doc()["images"] = {{{"uri", png_data_uri(two_pixel_png())}, {"name", "checker"}}};
-  b.doc()["samplers"] = {json::object()};
+  b.doc()["samplers"] = json::array({json::object()});
   b.doc()["textures"] = {{{"source", 0}, {"sampler", 0}}};
   return b;
 }
