@@ -22,8 +22,11 @@ Result<View> parse_view(const std::string& text) {
   if (text == "indirect") return View::kIndirect;
   if (text == "albedo") return View::kAlbedo;
   if (text == "normal") return View::kNormal;
-  return invalid_argument("view must be one of full, direct, indirect, albedo, normal (got '" +
-                          text + "')");
+  if (text == "probes") return View::kProbes;
+  if (text == "atlas") return View::kAtlas;
+  return invalid_argument(
+      "view must be one of full, direct, indirect, albedo, normal, probes, atlas (got '" + text +
+      "')");
 }
 
 }  // namespace ddgi

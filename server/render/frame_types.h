@@ -12,7 +12,15 @@ namespace ddgi {
 enum class Tonemap : uint32_t { kClamp = 0, kReinhard = 1, kAces = 2 };
 // How direct light from punctual lights is evaluated (per pixel and at probe-ray hits).
 enum class DirectMode : uint32_t { kTracedShadows = 0, kUnshadowed = 1 };
-enum class View : uint32_t { kFull = 0, kDirect = 1, kIndirect = 2, kAlbedo = 3, kNormal = 4 };
+enum class View : uint32_t {
+  kFull = 0,
+  kDirect = 1,
+  kIndirect = 2,
+  kAlbedo = 3,
+  kNormal = 4,
+  kProbes = 5,  // the full image with every probe drawn as a sphere shaded by its irradiance
+  kAtlas = 6,   // the irradiance atlas over the distance atlas
+};
 
 Result<Tonemap> parse_tonemap(const std::string& text);
 Result<DirectMode> parse_direct_mode(const std::string& text);

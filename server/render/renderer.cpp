@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -16,6 +17,7 @@ static_assert(sizeof(gpu::PrimaryConstants) == 64);
 static_assert(sizeof(gpu::DirectConstants) == 16);
 static_assert(sizeof(gpu::TonemapConstants) == 16);
 static_assert(sizeof(gpu::IndirectConstants) == 32);
+static_assert(sizeof(gpu::FieldViewConstants) == 64);
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -99,6 +101,10 @@ Status Renderer::create_kernels() {
         indirect_,
         vk::Kernel::create(
             context_, {"indirect", false, with_field, sizeof(gpu::IndirectConstants)}, backend_));
+    DDGI_ASSIGN_OR_RETURN(field_views_, vk::Kernel::create(context_,
+                                                           {"field_views", false, with_field,
+                                                            sizeof(gpu::FieldViewConstants)},
+                                                           backend_));
   }
   DDGI_ASSIGN_OR_RETURN(
       tonemap_,
@@ -144,6 +150,10 @@ Status Renderer::resize(uint32_t width, uint32_t height) {
 
 Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   DDGI_TRY(validate(settings));
+  const bool field_view = settings.view == View::kProbes || settings.view == View::kAtlas;
+  if (field_view && !field_) {
+    return failed_precondition("the probes and atlas views need an irradiance field (GI is off)");
+  }
   DDGI_TRY(resize(settings.width, settings.height));
   const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
 
@@ -166,6 +176,18 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   indirect.view = static_cast<uint32_t>(settings.view);
   indirect.width = settings.width;
   indirect.height = settings.height;
+  gpu::FieldViewConstants views{};
+  views.camera_position = basis.position;
+  views.view = static_cast<uint32_t>(settings.view);
+  views.camera_forward = basis.forward;
+  views.width = settings.width;
+  views.camera_right = basis.right;
+  views.height = settings.height;
+  views.camera_up = basis.up;
+  if (field_) {
+    const glm::vec3 spacing = field_->params().spacing;
+    views.probe_radius = 0.1f * std::min({spacing.x, spacing.y, spacing.z});
+  }
   const VkDescriptorSet sets[] = {scene_.descriptor_set(), frame_set_,
                                   field_ ? field_->sampling_set() : VK_NULL_HANDLE};
   const std::span<const VkDescriptorSet> frame_sets(sets, 2);
@@ -189,6 +211,12 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
     if (field_) {
       timer_.begin_pass(cmd, "indirect");
       indirect_.dispatch(cmd, sets, &indirect, size);
+      timer_.end_pass(cmd);
+      vk::barrier_all(cmd);
+    }
+    if (field_view) {
+      timer_.begin_pass(cmd, "field view");
+      field_views_.dispatch(cmd, sets, &views, size);
       timer_.end_pass(cmd);
       vk::barrier_all(cmd);
     }

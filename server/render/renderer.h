@@ -71,6 +71,7 @@ class Renderer {
   vk::Kernel primary_;
   vk::Kernel direct_;
   vk::Kernel indirect_;
+  vk::Kernel field_views_;
   vk::Kernel tonemap_;
   vk::GpuTimer timer_;
 

@@ -20,7 +20,7 @@ void main() {
   const uint index = pixel.y * pc.width + pixel.x;
   const GBufferTexel texel = gbuffer[index];
   if ((unpack_gbuffer_flags(texel.albedo_flags) & kGBufferHit) == 0u) return;
-  if (pc.view != kViewFull && pc.view != kViewIndirect) return;
+  if (pc.view != kViewFull && pc.view != kViewIndirect && pc.view != kViewProbes) return;
   const vec3 n = unpack_normal(texel.normal_oct);
   const vec3 to_camera = safe_normalize(pc.camera_position - texel.position, n);
   const vec3 indirect = unpack_albedo(texel.albedo_flags) *

@@ -39,6 +39,8 @@ DDGI_CONST uint kViewDirect = 1u;
 DDGI_CONST uint kViewIndirect = 2u;
 DDGI_CONST uint kViewAlbedo = 3u;
 DDGI_CONST uint kViewNormal = 4u;
+DDGI_CONST uint kViewProbes = 5u;  // the full image with every probe drawn as a sphere
+DDGI_CONST uint kViewAtlas = 6u;   // the irradiance atlas (top) and distance atlas (bottom)
 
 struct PrimaryConstants {
   vec3 camera_position;
@@ -65,6 +67,17 @@ struct IndirectConstants {
   uint height;
   uint pad0;
   uint pad1;
+};
+
+struct FieldViewConstants {
+  vec3 camera_position;
+  uint view;
+  vec3 camera_forward;
+  uint width;
+  vec3 camera_right;  // scaled as in PrimaryConstants
+  uint height;
+  vec3 camera_up;     // scaled as in PrimaryConstants
+  float probe_radius;
 };
 
 struct TonemapConstants {
