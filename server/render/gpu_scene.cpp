@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/log.h"
+#include "render/emitter_table.h"
 
 namespace ddgi {
 namespace {
@@ -59,6 +60,7 @@ std::vector<vk::Binding> scene_bindings(uint32_t max_textures) {
       {gpu::kSceneBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kSceneBindingGlobals, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kSceneBindingEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+      {gpu::kSceneBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kSceneBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, max_textures, true},
   };
 }
@@ -79,6 +81,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(vk::Context& context, const S
   DDGI_TRY(gpu->upload_environment());
   DDGI_TRY(gpu->upload_lights());
   DDGI_TRY(gpu->upload_instances());
+  DDGI_TRY(gpu->upload_emitters());
   DDGI_TRY(gpu->upload_globals());
   DDGI_TRY(gpu->build_acceleration_structures());
   DDGI_TRY(gpu->create_descriptors());
@@ -250,6 +253,20 @@ Status GpuScene::upload_instances() {
   return vk::update_buffer(context_, instances_, as_bytes(instances));
 }
 
+Status GpuScene::upload_emitters() {
+  const EmitterTable table = build_emitter_table(scene_, mesh_first_geometry_);
+  // Moving instances never changes which triangles emit, so the buffer keeps its size.
+  if (!emitters_) {
+    const size_t bytes = std::max<size_t>(1, table.emitters.size()) * sizeof(gpu::GpuEmitter);
+    DDGI_ASSIGN_OR_RETURN(emitters_, vk::Buffer::create(context_, bytes, kTableUsage,
+                                                        vk::MemoryUsage::kDeviceLocal, "emitters"));
+  }
+  emitter_count_ = static_cast<uint32_t>(table.emitters.size());
+  emitter_total_weight_ = table.total_weight;
+  if (table.emitters.empty()) return ok_status();
+  return vk::update_buffer(context_, emitters_, as_bytes(table.emitters));
+}
+
 Status GpuScene::upload_globals() {
   gpu::SceneGlobals g{};
   const Environment& env = scene_.environment;
@@ -263,6 +280,8 @@ Status GpuScene::upload_globals() {
   g.bounds_max = bounds_.empty() ? glm::vec3(0.0f) : bounds_.max;
   g.scene_scale = std::max(glm::length(bounds_.extent()), 1e-6f);
   g.ray_epsilon = g.scene_scale * 1e-5f;
+  g.emitter_count = emitter_count_;
+  g.emitter_total_weight = emitter_total_weight_;
   if (!globals_) {
     DDGI_ASSIGN_OR_RETURN(globals_, vk::Buffer::create(context_, sizeof(g), kTableUsage,
                                                        vk::MemoryUsage::kDeviceLocal, "globals"));
@@ -325,6 +344,7 @@ Status GpuScene::create_descriptors() {
       .buffer(gpu::kSceneBindingMaterials, materials_)
       .buffer(gpu::kSceneBindingLights, lights_)
       .buffer(gpu::kSceneBindingGlobals, globals_)
+      .buffer(gpu::kSceneBindingEmitters, emitters_)
       .sampled_image(gpu::kSceneBindingEnvironment, environment_, environment_sampler_.handle());
   for (size_t i = 0; i < textures_.size(); ++i) {
     writer.sampled_image(gpu::kSceneBindingTextures, textures_[i], texture_sampler_.handle(),
@@ -351,12 +371,16 @@ Status GpuScene::set_instance_transform(size_t instance, const glm::mat4& object
     return invalid_argument("instance transform is singular");
   }
   scene_.instances[instance].transform = object_to_world;
+  ++revision_;
   DDGI_TRY(upload_instances());
+  DDGI_TRY(upload_emitters());
+  DDGI_TRY(upload_globals());
   return rebuild_tlas();
 }
 
 Status GpuScene::set_lights(const std::vector<Light>& lights) {
   scene_.lights = lights;
+  ++revision_;
   DDGI_TRY(upload_lights());
   return upload_globals();
 }

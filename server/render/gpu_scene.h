@@ -28,6 +28,10 @@ class GpuScene {
   // Bytes of GPU memory held by the scene (buffers, textures, acceleration structures).
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   uint32_t triangle_count() const { return triangle_count_; }
+  // Emissive triangles in the emitter table (binding kSceneBindingEmitters).
+  uint32_t emitter_count() const { return emitter_count_; }
+  // Changes with every update below, so that accumulating passes know to start over.
+  uint64_t revision() const { return revision_; }
 
   // Moves one instance (index into Scene::instances); rebuilds the TLAS.
   Status set_instance_transform(size_t instance, const glm::mat4& object_to_world);
@@ -42,6 +46,7 @@ class GpuScene {
   Status upload_environment();
   Status upload_lights();
   Status upload_instances();
+  Status upload_emitters();
   Status upload_globals();
   Status build_acceleration_structures();
   Status rebuild_tlas();
@@ -52,6 +57,9 @@ class GpuScene {
   Bounds bounds_;
   uint64_t gpu_bytes_ = 0;
   uint32_t triangle_count_ = 0;
+  uint32_t emitter_count_ = 0;
+  float emitter_total_weight_ = 0.0f;
+  uint64_t revision_ = 0;
 
   // Per mesh, per primitive: where its data lives in the shared buffers.
   struct PrimitiveRange {
@@ -74,6 +82,7 @@ class GpuScene {
   vk::Buffer materials_;
   vk::Buffer lights_;
   vk::Buffer globals_;
+  vk::Buffer emitters_;
   std::vector<vk::Image> textures_;
   vk::Image environment_;
   vk::Sampler texture_sampler_;

@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/reference_render.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -38,6 +39,11 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
   --field NAME=VALUE    set a field parameter (repeatable); --field help lists them
                         [grid from the scene's sidecar, else fitted to its bounds]
   --frames N            render N times (one field update each) and report median times [1]
+  --reference SPP       render the path-traced reference instead, SPP samples per pixel;
+                        --view full | direct | indirect | punctual-direct | field-indirect
+                        (docs/reference-path-tracer.md)
+  --max-bounces N       reference: scattering events per path, 0..1024    [64]
+  --seed S              reference: random seed, 0..4294967295             [0]
   --device NAME         use the Vulkan device whose name contains NAME
   --validation          enable Vulkan validation layers
   --log-level L         debug | info | warning | error                  [info]
@@ -58,11 +64,12 @@ double median(std::vector<double> values) {
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
-      Flags flags, Flags::parse(argc, argv,
-                                {"out", "width", "height", "camera", "backend", "view", "direct",
-                                 "tonemap", "exposure", "jpeg-quality", "frames", "device",
-                                 "log-level", "gi", "warmup", "field"},
-                                {"validation", "help"}));
+      Flags flags,
+      Flags::parse(argc, argv,
+                   {"out", "width", "height", "camera", "backend", "view", "direct", "tonemap",
+                    "exposure", "jpeg-quality", "frames", "device", "log-level", "gi", "warmup",
+                    "field", "reference", "max-bounces", "seed"},
+                   {"validation", "help"}));
   if (flags.has("help")) {
     std::fputs(kUsage, stdout);
     return ok_status();
@@ -94,7 +101,17 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const double exposure, flags.get_double("exposure", 1.0, 1e-9, 1e9));
   settings.exposure = static_cast<float>(exposure);
   DDGI_ASSIGN_OR_RETURN(const std::string view, flags.get_string("view", "full"));
-  DDGI_ASSIGN_OR_RETURN(settings.view, parse_view(view));
+  DDGI_ASSIGN_OR_RETURN(const int64_t reference_spp, flags.get_int("reference", 0, 0, 1 << 24));
+  ReferenceOptions reference;
+  if (reference_spp > 0) {
+    DDGI_ASSIGN_OR_RETURN(reference.settings.view, parse_path_trace_view(view));
+    DDGI_ASSIGN_OR_RETURN(const int64_t bounces, flags.get_int("max-bounces", 64, 0, 1024));
+    DDGI_ASSIGN_OR_RETURN(const int64_t seed, flags.get_int("seed", 0, 0, 4294967295));
+    reference.settings.max_bounces = static_cast<uint32_t>(bounces);
+    reference.settings.seed = static_cast<uint32_t>(seed);
+  } else {
+    DDGI_ASSIGN_OR_RETURN(settings.view, parse_view(view));
+  }
   DDGI_ASSIGN_OR_RETURN(const std::string direct, flags.get_string("direct", "shadow-rays"));
   DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
   DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
@@ -127,6 +144,17 @@ Status run(int argc, char** argv) {
   options.backend = forced_backend;
   DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
   DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
+  if (reference_spp > 0) {
+    reference.settings.width = settings.width;
+    reference.settings.height = settings.height;
+    reference.settings.camera = settings.camera;
+    reference.samples = static_cast<uint32_t>(reference_spp);
+    reference.out_path = out_path;
+    reference.jpeg_quality = static_cast<int>(quality);
+    reference.tonemap = settings.tonemap;
+    reference.exposure = settings.exposure;
+    return render_reference(*context, *gpu_scene, context->default_backend(), reference);
+  }
   std::unique_ptr<IrradianceField> field;
   if (gi == "on") {
     DDGI_ASSIGN_OR_RETURN(field, IrradianceField::create(*context, *gpu_scene, field_params,

@@ -35,6 +35,9 @@ layout(set = 0, binding = kSceneBindingGlobals, scalar) readonly buffer SceneGlo
 };
 layout(set = 0, binding = kSceneBindingEnvironment) uniform sampler2D environment_map;
 layout(set = 0, binding = kSceneBindingTextures) uniform sampler2D scene_textures[];
+layout(set = 0, binding = kSceneBindingEmitters, scalar) readonly buffer SceneEmitters {
+  GpuEmitter scene_emitters[];
+};
 
 // A ray's closest hit; t < 0 means the ray missed everything.
 struct Hit {

@@ -19,7 +19,10 @@ DDGI_CONST uint kSceneBindingMaterials = 6;   // GpuMaterial
 DDGI_CONST uint kSceneBindingLights = 7;      // GpuLight
 DDGI_CONST uint kSceneBindingGlobals = 8;     // SceneGlobals (one)
 DDGI_CONST uint kSceneBindingEnvironment = 9; // equirectangular map (RGBA32F)
-DDGI_CONST uint kSceneBindingTextures = 10;   // variable-sized array, last binding
+DDGI_CONST uint kSceneBindingEmitters = 11;   // GpuEmitter per emissive triangle (world space)
+// Vulkan requires the variable-sized array to have the highest binding number, so it sits at
+// the top of the range and new bindings take the free numbers below it (12..30).
+DDGI_CONST uint kSceneBindingTextures = 31;   // variable-sized array, last binding
 
 DDGI_CONST uint kSceneSet = 0;
 
@@ -88,6 +91,24 @@ struct SceneGlobals {
   float scene_scale;          // length of the bounds' diagonal (ray offsets scale with it)
   vec3 bounds_max;
   float ray_epsilon;          // offset along the normal for secondary rays
+  uint emitter_count;         // entries of the emitter table
+  float emitter_total_weight; // sum of area x luminance(emissive factor) over emitters
+};
+
+// One emissive triangle in world space, for light sampling. Emitters are chosen with
+// probability proportional to area x luminance(emission), so a point on any emitter has the
+// area density luminance(emission) / SceneGlobals::emitter_total_weight.
+struct GpuEmitter {
+  vec3 p0;
+  uint instance;   // instance table index (as in a Hit)
+  vec3 p1;
+  uint geometry;   // index into the geometry table (instance's first_geometry + local index)
+  vec3 p2;
+  uint primitive;  // triangle index inside the geometry
+  vec3 normal;     // unit face normal in the convention of surface_at (the emitting side)
+  float area;
+  vec3 emission;   // the material's emissive factor (its texture is applied where sampled)
+  float cdf;       // probability of choosing this emitter or one before it; the last is 1
 };
 
 DDGI_CONST uint kSceneHasAlphaMask = 1u;

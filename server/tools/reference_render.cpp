@@ -1,0 +1,87 @@
+#include "tools/reference_render.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/log.h"
+#include "encode/write_image.h"
+
+namespace ddgi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Short GPU submissions keep progress lines flowing and stay clear of driver watchdogs.
+constexpr double kBatchSeconds = 1.0;
+constexpr double kProgressSeconds = 5.0;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Status write(const ReferenceOptions& options, const PathTraceImage& image) {
+  DDGI_ASSIGN_OR_RETURN(const encode::ImageFormat format,
+                        encode::format_from_path(options.out_path));
+  if (format == encode::ImageFormat::kExr) {
+    encode::ImageRgbF hdr{image.width, image.height, {}};
+    hdr.rgb.reserve(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+      hdr.rgb.insert(hdr.rgb.end(), &image.radiance[i * 4], &image.radiance[i * 4 + 3]);
+    }
+    return encode::write_image(options.out_path, hdr);
+  }
+  encode::WriteOptions write_options;
+  write_options.jpeg_quality = options.jpeg_quality;
+  return encode::write_image(
+      options.out_path, encode::ImageRgba8{image.width, image.height, image.ldr}, write_options);
+}
+
+}  // namespace
+
+Status render_reference(vk::Context& context, GpuScene& scene, vk::TraceBackend backend,
+                        const ReferenceOptions& options) {
+  DDGI_TRY(validate(options.settings));
+  DDGI_TRY(encode::format_from_path(options.out_path));  // fail before the long part
+  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, scene, backend));
+  LOG_INFO << "reference: " << options.samples << " samples per pixel, " << scene.emitter_count()
+           << " emissive triangles, max bounces " << options.settings.max_bounces << ", seed "
+           << options.settings.seed;
+
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_report = start;
+  uint32_t batch = 1;
+  while (tracer->samples() < options.samples) {
+    batch = std::min(batch, options.samples - tracer->samples());
+    const Clock::time_point batch_start = Clock::now();
+    DDGI_TRY(tracer->accumulate(options.settings, batch));
+    // Size the next batch to about kBatchSeconds from this one's time per sample.
+    const double per_sample = std::max(seconds_since(batch_start), 1e-6) / batch;
+    batch = static_cast<uint32_t>(std::clamp(kBatchSeconds / per_sample, 1.0, 65536.0));
+    if (std::chrono::duration<double>(Clock::now() - last_report).count() >= kProgressSeconds) {
+      last_report = Clock::now();
+      const double elapsed = seconds_since(start);
+      const double remaining = elapsed / tracer->samples() * (options.samples - tracer->samples());
+      LOG_INFO << "reference: " << tracer->samples() << "/" << options.samples
+               << " samples per pixel, " << std::lround(elapsed) << " s elapsed, about "
+               << std::lround(remaining) << " s left";
+    }
+  }
+  const double elapsed = seconds_since(start);
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage image,
+                        tracer->read(options.tonemap, options.exposure));
+  DDGI_TRY(write(options, image));
+  std::printf("%s: %ux%u, reference path tracer, %u samples per pixel, backend %s, device %s\n",
+              options.out_path.c_str(), image.width, image.height, image.samples,
+              vk::backend_name(backend), context.caps().device_name.c_str());
+  std::printf("%.3f s, %.1f ms per sample of every pixel\n", elapsed,
+              elapsed * 1e3 / image.samples);
+  if (context.validation_message_count() > 0) {
+    return internal_error(std::to_string(context.validation_message_count()) +
+                          " Vulkan validation messages (see above)");
+  }
+  return ok_status();
+}
+
+}  // namespace ddgi
