@@ -28,7 +28,7 @@ bool ends_with_lowercase(const std::string& text, const std::string& suffix) {
 Result<Scene> load_model(std::span<const uint8_t> bytes, const SceneFolder& folder,
                          const MaterialOverrides& overrides, const SceneLimits& limits) {
   DDGI_ASSIGN_OR_RETURN(const tinygltf::Model model, parse_gltf(bytes, folder, limits));
-  DDGI_TRY(validate_gltf(model, has_glb_magic(bytes)));
+  DDGI_TRY(validate_gltf(model));
   return convert_gltf(model, overrides, limits);
 }
 

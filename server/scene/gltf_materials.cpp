@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "scene/gltf_parse.h"
 #include "scene/gltf_values.h"
 #include "scene/image_decode.h"
 
@@ -58,7 +59,7 @@ class TextureTable {
       const tinygltf::Image& source = model_.images[static_cast<size_t>(image)];
       const ImageSize size{static_cast<uint32_t>(source.width),
                            static_cast<uint32_t>(source.height)};
-      Result<std::vector<uint8_t>> rgba = decode_rgba8(source.image, size);
+      Result<std::vector<uint8_t>> rgba = decode_rgba8(encoded_image(model_, source), size);
       if (!rgba.ok()) return rgba.error().with_context("images[" + std::to_string(image) + "]");
       Texture texture;
       texture.name = !source.name.empty()  ? source.name

@@ -2,6 +2,9 @@
 
 #include <optional>
 #include <string>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
 
 #include "scene/accessor_reader.h"
 #include "scene/glb_container.h"
@@ -17,6 +20,8 @@ struct ParseContext {
   // tinygltf joins this base folder with each URI; what follows it is the URI itself.
   std::string base_prefix;
   uint64_t max_file_bytes = 0;
+  // Many URIs may name the same large file: what they read adds up against max_file_bytes.
+  uint64_t bytes_read = 0;
   uint32_t max_texture_dimension = 0;
   const tinygltf::Model* model = nullptr;  // buffers and views are parsed before images
   std::optional<Error> first_error;
@@ -62,12 +67,23 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     *err = resolved.error().message;
     return false;
   }
-  Result<std::vector<uint8_t>> bytes = read_file(*resolved, ctx->max_file_bytes);
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(*resolved, ec);
+  if (!ec && size > ctx->max_file_bytes - ctx->bytes_read) {
+    ctx->note(resource_exhausted("uri '" + *uri +
+                                 "': the files this scene references add up to "
+                                 "more than the limit of " +
+                                 std::to_string(ctx->max_file_bytes) + " bytes"));
+    *err = "file size limit";
+    return false;
+  }
+  Result<std::vector<uint8_t>> bytes = read_file(*resolved, ctx->max_file_bytes - ctx->bytes_read);
   if (!bytes.ok()) {
     ctx->note(bytes.error().with_context("uri '" + *uri + "'"));
     *err = bytes.error().message;
     return false;
   }
+  ctx->bytes_read += bytes->size();
   *out = std::move(bytes).value();
   return true;
 }
@@ -85,7 +101,8 @@ std::string image_label(const tinygltf::Image& image, int index) {
 }
 
 // tinygltf's image callback: check the header, keep the bytes; decoding waits until we know
-// which images the scene uses.
+// which images the scene uses. Images in buffer views are not copied (many images may share
+// one large view); encoded_image() finds their bytes later.
 bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* err, std::string*,
                         int, int, const unsigned char* bytes, int size, void* user) {
   auto* ctx = static_cast<ParseContext*>(user);
@@ -114,7 +131,7 @@ bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* er
     *err += label + ": " + probed.error().message + "\n";
     return false;
   }
-  image->image.assign(encoded.begin(), encoded.end());
+  if (image->bufferView == -1) image->image.assign(encoded.begin(), encoded.end());
   image->as_is = true;
   image->width = static_cast<int>(probed->width);
   image->height = static_cast<int>(probed->height);
@@ -122,6 +139,24 @@ bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* er
   image->bits = 8;
   image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
   return true;
+}
+
+// tinygltf copies the whole BIN chunk into every GLB buffer that has no uri, before any check
+// of ours could run: a few bytes of JSON listing many such buffers would exhaust memory.
+Status check_glb_buffers(std::span<const uint8_t> json_text) {
+  const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr,
+                                                   /*allow_exceptions=*/false);
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) {
+    return ok_status();  // tinygltf reports what is wrong with it
+  }
+  const nlohmann::json& buffers = doc["buffers"];
+  for (size_t i = 1; i < buffers.size(); ++i) {
+    if (!buffers[i].is_object() || !buffers[i].contains("uri")) {
+      return invalid_argument("buffers[" + std::to_string(i) +
+                              "] has no uri; only buffers[0] may refer to the GLB BIN chunk");
+    }
+  }
+  return ok_status();
 }
 
 std::string trim(std::string text) {
@@ -143,6 +178,12 @@ Status check_images_loaded(const tinygltf::Model& model, const ParseContext& ctx
 
 }  // namespace
 
+std::span<const uint8_t> encoded_image(const tinygltf::Model& model, const tinygltf::Image& image) {
+  if (image.bufferView == -1) return image.image;
+  Result<std::span<const uint8_t>> view = buffer_view_bytes(model, image.bufferView);
+  return view.ok() ? *view : std::span<const uint8_t>();
+}
+
 Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFolder& folder,
                                    const SceneLimits& limits) {
   const bool binary = has_glb_magic(bytes);
@@ -153,6 +194,7 @@ Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFo
   }
   if (json_text.size() < 2) return invalid_argument("the file is too short to be glTF");
   DDGI_TRY(precheck_json(json_text, limits.max_json_depth));
+  if (binary) DDGI_TRY(check_glb_buffers(json_text));
 
   ParseContext ctx;
   ctx.folder = &folder;

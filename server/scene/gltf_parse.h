@@ -15,10 +15,15 @@
 namespace ddgi {
 
 // `bytes` is a .gltf JSON text or a whole .glb (told apart by the GLB magic). URIs resolve in
-// `folder`; a default SceneFolder refuses all of them. On success every image holds its
-// encoded PNG/JPEG bytes in Image::image with as_is = true and width/height from its header.
+// `folder`; a default SceneFolder refuses all of them, and everything read through URIs adds
+// up against limits.max_file_bytes. On success every image has as_is = true, width/height
+// from its checked header, and its encoded PNG/JPEG bytes available through encoded_image().
 // Errors carry no file name; the caller adds it.
 Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFolder& folder,
                                    const SceneLimits& limits);
+
+// The encoded bytes of an image of a model parse_gltf returned: Image::image, or for an image
+// stored in a buffer view, that view's bytes.
+std::span<const uint8_t> encoded_image(const tinygltf::Model& model, const tinygltf::Image& image);
 
 }  // namespace ddgi

@@ -59,13 +59,7 @@ Status check_required_extensions(const tinygltf::Model& model) {
   return ok_status();
 }
 
-Status check_buffers(const tinygltf::Model& model, bool binary) {
-  for (size_t i = 1; binary && i < model.buffers.size(); ++i) {
-    if (model.buffers[i].uri.empty()) {
-      return invalid_argument(at("buffers", i) +
-                              " has no uri; only buffers[0] may refer to the GLB BIN chunk");
-    }
-  }
+Status check_buffers(const tinygltf::Model& model) {
   for (size_t i = 0; i < model.bufferViews.size(); ++i) {
     DDGI_TRY(buffer_view_bytes(model, static_cast<int>(i)));
   }
@@ -225,9 +219,9 @@ Status check_cameras_and_lights(const tinygltf::Model& model) {
 
 }  // namespace
 
-Status validate_gltf(const tinygltf::Model& model, bool binary) {
+Status validate_gltf(const tinygltf::Model& model) {
   DDGI_TRY(check_required_extensions(model));
-  DDGI_TRY(check_buffers(model, binary));
+  DDGI_TRY(check_buffers(model));
   DDGI_TRY(check_meshes(model));
   DDGI_TRY(check_materials(model));
   DDGI_TRY(check_nodes(model));

@@ -9,7 +9,6 @@
 
 namespace ddgi {
 
-// `binary`: the model came from a GLB (only buffer 0 may then omit its uri).
-Status validate_gltf(const tinygltf::Model& model, bool binary);
+Status validate_gltf(const tinygltf::Model& model);
 
 }  // namespace ddgi

@@ -2,12 +2,50 @@
 
 namespace ddgi {
 
-Bounds Scene::world_bounds() const {
+namespace {
+
+// Past this many instanced vertices, exact bounds would take seconds (instancing multiplies
+// them); the transformed box of each mesh's bounds is used instead.
+constexpr uint64_t kExactBoundsVertexBudget = uint64_t{1} << 26;
+
+Bounds object_bounds(const Mesh& mesh) {
   Bounds bounds;
+  for (const Primitive& prim : mesh.primitives) {
+    for (const glm::vec3& p : prim.positions) bounds.grow(p);
+  }
+  return bounds;
+}
+
+}  // namespace
+
+Bounds Scene::world_bounds() const {
+  uint64_t instanced_vertices = 0;
   for (const Instance& instance : instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;
     for (const Primitive& prim : meshes[static_cast<size_t>(instance.mesh)].primitives) {
-      for (const glm::vec3& p : prim.positions) {
+      instanced_vertices += prim.positions.size();
+    }
+  }
+  const bool exact = instanced_vertices <= kExactBoundsVertexBudget;
+  std::vector<Bounds> mesh_bounds;
+  if (!exact) {
+    for (const Mesh& mesh : meshes) mesh_bounds.push_back(object_bounds(mesh));
+  }
+  Bounds bounds;
+  for (const Instance& instance : instances) {
+    if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;
+    const size_t m = static_cast<size_t>(instance.mesh);
+    if (exact) {
+      for (const Primitive& prim : meshes[m].primitives) {
+        for (const glm::vec3& p : prim.positions) {
+          bounds.grow(glm::vec3(instance.transform * glm::vec4(p, 1.0f)));
+        }
+      }
+    } else if (!mesh_bounds[m].empty()) {
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? mesh_bounds[m].max.x : mesh_bounds[m].min.x,
+                          (corner & 2) ? mesh_bounds[m].max.y : mesh_bounds[m].min.y,
+                          (corner & 4) ? mesh_bounds[m].max.z : mesh_bounds[m].min.z);
         bounds.grow(glm::vec3(instance.transform * glm::vec4(p, 1.0f)));
       }
     }

@@ -132,7 +132,9 @@ struct Scene {
   std::optional<ProbeGridHint> probe_grid;
   std::vector<std::string> warnings;  // non-fatal findings, e.g. "no light"
 
-  // World-space bounds of every instance's vertices.
+  // World-space bounds of every instance's vertices. Exact up to 64 M instanced vertices;
+  // beyond that (heavy instancing), the union of each instance's transformed mesh box, which
+  // may be slightly larger.
   Bounds world_bounds() const;
   // True when something emits light: a light, an emissive material in use, or the environment.
   bool has_any_light() const;

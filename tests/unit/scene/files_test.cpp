@@ -168,6 +168,26 @@ TEST(Files, FileSizeLimit) {
   EXPECT_EQ(scene.error().code, ErrorCode::kResourceExhausted);
 }
 
+TEST(Files, ReferencedFilesAddUpAgainstTheLimit) {
+  // Many URIs naming one large file must not multiply what is read.
+  TempDir dir;
+  GltfBuilder b = testing::triangle_builder();
+  std::vector<uint8_t> big = b.bin();
+  big.resize(600, 0);
+  dir.write("scene/scene.bin", big);
+  json doc = json::parse(b.gltf_text("scene.bin"));
+  doc["buffers"][0]["byteLength"] = 600;
+  doc["buffers"].push_back({{"uri", "scene.bin"}, {"byteLength", 600}});
+  const fs::path gltf = dir.write("scene/scene.gltf", doc.dump());
+  SceneLimits limits;
+  limits.max_file_bytes = 1024;
+  Result<Scene> scene = load_scene(gltf.string(), limits);
+  EXPECT_THAT(error_of(scene), HasSubstr("add up to more than the limit of 1024 bytes"));
+  EXPECT_EQ(scene.error().code, ErrorCode::kResourceExhausted);
+  limits.max_file_bytes = 2048;
+  EXPECT_TRUE(load_scene(gltf.string(), limits).ok());
+}
+
 TEST(Files, PathErrors) {
   Result<Scene> missing = load_scene("/nonexistent/scene.gltf");
   EXPECT_THAT(error_of(missing), HasSubstr("/nonexistent/scene.gltf"));

@@ -151,6 +151,15 @@ TEST(Materials, ImageFromBufferViewInGlb) {
   ASSERT_EQ(scene->textures.size(), 1u);
   EXPECT_EQ(scene->textures[0].rgba8[4 + 1], 255);
 
+  // Images sharing one buffer view each decode from it.
+  b.doc()["images"].push_back({{"bufferView", view}, {"mimeType", "image/png"}});
+  b.doc()["textures"].push_back({{"source", 1}});
+  b.doc()["materials"][0]["emissiveTexture"] = {{"index", 1}};
+  scene = load_glb_from_memory(b.glb(), "textured.glb");
+  ASSERT_TRUE(scene.ok()) << error_of(scene);
+  ASSERT_EQ(scene->textures.size(), 2u);
+  EXPECT_EQ(scene->textures[1].rgba8, scene->textures[0].rgba8);
+
   // A view that runs past the buffer must be caught before the image bytes are read.
   b.doc()["bufferViews"][view]["byteLength"] = 100000;
   EXPECT_THAT(error_of(load_glb_from_memory(b.glb(), "textured.glb")),
