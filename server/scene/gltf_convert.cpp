@@ -96,7 +96,12 @@ Result<Scene> convert_gltf(const tinygltf::Model& model, const MaterialOverrides
   DDGI_ASSIGN_OR_RETURN(const std::vector<PlacedNode> placed,
                         place_nodes(model, limits, &scene.warnings));
 
-  GeometryBudget budget{limits.max_vertices, limits.max_triangles, limits.max_triangles};
+  GeometryBudget budget;
+  budget.vertices_left = limits.max_vertices;
+  budget.triangles_left = limits.max_triangles;
+  budget.primitives_left = limits.max_primitives;
+  budget.max_triangles = limits.max_triangles;
+  budget.max_primitives = limits.max_primitives;
   std::vector<int> scene_mesh(model.meshes.size(), kNotConverted);
   for (const PlacedNode& p : placed) {
     const tinygltf::Node& node = model.nodes[static_cast<size_t>(p.node)];
@@ -126,7 +131,13 @@ Result<Scene> convert_gltf(const tinygltf::Model& model, const MaterialOverrides
     if (light >= 0) {
       std::optional<Light> converted =
           convert_light(model.lights[static_cast<size_t>(light)], p, &scene.warnings);
-      if (converted) scene.lights.push_back(std::move(*converted));
+      if (converted) {
+        if (scene.lights.size() >= limits.max_lights) {
+          return resource_exhausted("the scene has more than the limit of " +
+                                    std::to_string(limits.max_lights) + " lights");
+        }
+        scene.lights.push_back(std::move(*converted));
+      }
     }
     if (node.camera >= 0) {
       std::optional<Camera> converted =

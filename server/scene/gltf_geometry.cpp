@@ -136,7 +136,13 @@ Result<Mesh> convert_mesh(const tinygltf::Model& model, int index, GeometryBudge
         "meshes[" + std::to_string(index) + "].primitives[" + std::to_string(p) + "]";
     DDGI_ASSIGN_OR_RETURN(Primitive prim,
                           convert_primitive(model, mesh.primitives[p], where, budget, warnings));
-    if (!prim.indices.empty()) out.primitives.push_back(std::move(prim));
+    if (prim.indices.empty()) continue;
+    if (budget->primitives_left == 0) {
+      return resource_exhausted(where + ": the scene has more than the limit of " +
+                                std::to_string(budget->max_primitives) + " primitives");
+    }
+    --budget->primitives_left;
+    out.primitives.push_back(std::move(prim));
   }
   return out;
 }

@@ -17,7 +17,9 @@ namespace ddgi {
 struct GeometryBudget {
   uint64_t vertices_left = 0;
   uint64_t triangles_left = 0;
-  uint64_t max_triangles = 0;  // for messages
+  uint64_t primitives_left = 0;
+  uint64_t max_triangles = 0;   // for messages
+  uint64_t max_primitives = 0;  // for messages
 };
 
 // Mesh `index` (already validated by validate_gltf). Primitives with no triangles are left

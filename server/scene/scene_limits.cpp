@@ -23,6 +23,8 @@ Status validate_limits(const SceneLimits& limits) {
   DDGI_TRY(check_range("max_triangles", limits.max_triangles, 1, 1ull << 30));
   DDGI_TRY(check_range("max_vertices", limits.max_vertices, 1, 1ull << 30));
   DDGI_TRY(check_range("max_instances", limits.max_instances, 1, 1u << 24));
+  DDGI_TRY(check_range("max_primitives", limits.max_primitives, 1, 1u << 24));
+  DDGI_TRY(check_range("max_lights", limits.max_lights, 0, 1u << 20));
   DDGI_TRY(check_range("max_node_depth", limits.max_node_depth, 1, 65536));
   DDGI_TRY(check_range("max_json_depth", limits.max_json_depth, 8, 1024));
   DDGI_TRY(check_range("max_environment_width", limits.max_environment_width, 1, 65536));

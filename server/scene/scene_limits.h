@@ -26,6 +26,11 @@ struct SceneLimits {
   uint64_t max_vertices = 100'000'000;
   // Default 1 M, range [1, 16 M]: placed meshes (TLAS instances; Vulkan guarantees 2^24).
   uint32_t max_instances = 1'000'000;
+  // Default 1 M, range [1, 16 M]: triangle primitives over all meshes (BLAS geometries).
+  uint32_t max_primitives = 1'000'000;
+  // Default 4096, range [0, 1 M]: punctual lights, the glTF's and the sidecar's together;
+  // direct lighting visits every light at every shading point.
+  uint32_t max_lights = 4096;
   // Default 1024, range [1, 65536]: depth of the node hierarchy.
   uint32_t max_node_depth = 1024;
   // Default 64, range [8, 1024]: nesting of JSON arrays and objects; the glTF parser recurses

@@ -437,6 +437,10 @@ Status apply_sidecar(const Sidecar& sidecar, const SceneLimits& limits, Scene* s
       scene->environment.image = std::move(image).value();
     }
   }
+  if (scene->lights.size() + sidecar.lights.size() > limits.max_lights) {
+    return resource_exhausted(context + ": lights: the scene would have more than the limit of " +
+                              std::to_string(limits.max_lights) + " lights");
+  }
   scene->lights.insert(scene->lights.end(), sidecar.lights.begin(), sidecar.lights.end());
   if (sidecar.probe_grid) scene->probe_grid = sidecar.probe_grid;
   return ok_status();

@@ -366,6 +366,17 @@ TEST(Geometry, TriangleLimitIsEnforced) {
   EXPECT_TRUE(load_text(b, limits).ok());
 }
 
+TEST(Geometry, PrimitiveLimitIsEnforced) {
+  GltfBuilder b = testing::triangle_builder();
+  b.doc()["meshes"][0]["primitives"].push_back(b.doc()["meshes"][0]["primitives"][0]);
+  SceneLimits limits;
+  limits.max_primitives = 1;
+  EXPECT_THAT(error_of(load_text(b, limits)),
+              HasSubstr("primitives[1]: the scene has more than the limit of 1 primitives"));
+  limits.max_primitives = 2;
+  EXPECT_TRUE(load_text(b, limits).ok());
+}
+
 TEST(Geometry, SharedMeshIsConvertedOnce) {
   GltfBuilder b = testing::triangle_builder();
   b.doc()["nodes"].push_back({{"mesh", 0}, {"translation", {5, 0, 0}}});

@@ -115,6 +115,17 @@ TEST(Lights, InvalidLightsAreRefused) {
               HasSubstr("nodes[1].extensions.KHR_lights_punctual.light = 4 does not exist"));
 }
 
+TEST(Lights, LightLimit) {
+  GltfBuilder b = with_lights({{{"type", "point"}}});
+  add_light_node(b, 0, json::object());
+  add_light_node(b, 0, json::object());
+  SceneLimits limits;
+  limits.max_lights = 1;
+  EXPECT_THAT(error_of(load_text(b, limits)), HasSubstr("more than the limit of 1 lights"));
+  limits.max_lights = 2;
+  EXPECT_TRUE(load_text(b, limits).ok());
+}
+
 TEST(Lights, ZeroScaleLightIsSkippedWithAWarning) {
   GltfBuilder b = with_lights({{{"type", "directional"}}});
   add_light_node(b, 0, {{"scale", {0, 0, 0}}});

@@ -289,6 +289,16 @@ INSTANTIATE_TEST_SUITE_P(
                    "probe_grid: 'origin', 'spacing' and 'counts' are all required"},
         BadSidecar{json::array(), "(top level): expected an object"}));
 
+TEST(Sidecar, LightLimitCountsGltfAndSidecarLights) {
+  SceneWithSidecar s(json{{"lights",
+                           {{{"type", "point"}, {"position", {0, 0, 0}}},
+                            {{"type", "point"}, {"position", {0, 1, 0}}}}}});
+  SceneLimits limits;
+  limits.max_lights = 1;
+  EXPECT_THAT(error_of(load_scene(s.gltf.string(), limits)),
+              AllOf(HasSubstr("room.ddgi.json: lights"), HasSubstr("limit of 1 lights")));
+}
+
 TEST(Sidecar, RepeatedKeysAndBadJsonAreRefused) {
   SceneWithSidecar repeated(
       std::string(R"({"environment": {"color": [1, 1, 1]}, "environment": {"color": [0, 0, 0]}})"));
