@@ -13,6 +13,26 @@ import zlib
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 
+# A 2x2 baseline JPEG (red, green, blue, white), written once by stb_image_write at quality
+# 50: Python's standard library has no JPEG encoder.
+JPEG_2X2 = bytes.fromhex(
+    "ffd8ffe000104a46494600010100000100010000ffdb008400100b0c0e0c0a100e0d0e1211101318281a1816"
+    "16183123251d283a333d3c3933383740485c4e404457453738506d51575f626768673e4d71797064785c6567"
+    "63011112121815182f1a1a2f6342384263636363636363636363636363636363636363636363636363636363"
+    "63636363636363636363636363636363636363636363ffc00011080002000203012200021101031101ffc401"
+    "a20000010501010101010100000000000000000102030405060708090a0b1000020103030204030505040400"
+    "00017d01020300041105122131410613516107227114328191a1082342b1c11552d1f02433627282090a1617"
+    "18191a25262728292a3435363738393a434445464748494a535455565758595a636465666768696a73747576"
+    "7778797a838485868788898a92939495969798999aa2a3a4a5a6a7a8a9aab2b3b4b5b6b7b8b9bac2c3c4c5c6"
+    "c7c8c9cad2d3d4d5d6d7d8d9dae1e2e3e4e5e6e7e8e9eaf1f2f3f4f5f6f7f8f9fa0100030101010101010101"
+    "010000000000000102030405060708090a0b1100020102040403040705040400010277000102031104052131"
+    "061241510761711322328108144291a1b1c109233352f0156272d10a162434e125f11718191a262728292a35"
+    "363738393a434445464748494a535455565758595a636465666768696a737475767778797a82838485868788"
+    "898a92939495969798999aa2a3a4a5a6a7a8a9aab2b3b4b5b6b7b8b9bac2c3c4c5c6c7c8c9cad2d3d4d5d6d7"
+    "d8d9dae2e3e4e5e6e7e8e9eaf2f3f4f5f6f7f8f9faffda000c03010002110311003f00eb345b5b77d12c19e0"
+    "8999ada324940493b455dfb1daff00cfb43ff7c0aafa1ffc8074effaf68fff0041157e9d58479e5a7523922f"
+    "568fffd9")
+
 
 def png_1x1(rgba):
     def chunk(kind, data):
@@ -82,17 +102,18 @@ def triangle(index_type=5123):
     return b
 
 
-def textured(embed_in_view):
+def textured(embed_in_view, image=None):
     b = triangle(5121)
     uv = b.accessor(b.view(struct.pack("<6H", 0, 0, 65535, 0, 0, 65535)), 5123, 3, "VEC2",
                     normalized=True)
     b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv
     b.doc["meshes"][0]["primitives"][0]["material"] = 0
-    png = png_1x1([200, 100, 50, 128])
+    data = image or png_1x1([200, 100, 50, 128])
+    mime = "image/jpeg" if data[:2] == b"\xff\xd8" else "image/png"
     if embed_in_view:
-        b.doc["images"] = [{"bufferView": b.view(png), "mimeType": "image/png"}]
+        b.doc["images"] = [{"bufferView": b.view(data), "mimeType": mime}]
     else:
-        b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()}]
+        b.doc["images"] = [{"uri": "data:%s;base64,%s" % (mime, base64.b64encode(data).decode())}]
     b.doc["samplers"] = [{}]
     b.doc["textures"] = [{"source": 0, "sampler": 0}]
     b.doc["materials"] = [{"name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.4,
@@ -155,6 +176,7 @@ def main():
         "triangle_u16.glb": triangle(5123).glb(),
         "textured_view.glb": textured(True).glb(),
         "textured_uri.gltf": textured(False).gltf(),
+        "textured_jpeg.glb": textured(True, JPEG_2X2).glb(),
         "lights_camera.glb": lights_and_camera().glb(),
         "sparse_strip_quantized.gltf": sparse_strip_quantized().gltf(),
     }
