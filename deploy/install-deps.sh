@@ -26,7 +26,8 @@ $SUDO apt-get install -y -q --no-install-recommends \
   libopenexr-dev \
   libopenimageio-dev \
   libgtest-dev \
-  libsdl2-dev
+  libsdl2-dev \
+  xvfb xauth
 
 $SUDO apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 
