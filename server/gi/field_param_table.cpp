@@ -120,6 +120,31 @@ const std::vector<Entry>& entries() {
                   &P::energy_conservation),
       float_entry("weight_crush_threshold", "weights below are crushed, [0, 1]",
                   &P::weight_crush_threshold),
+      uint_entry("relocation_iterations", "relocation passes, [0, 16]; 0: no relocation",
+                 &P::relocation_iterations),
+      {{"classification", "true/false: Off/Sleeping/Vigilant/Awake states, trace active probes only"},
+       [](P& p, const std::string& text) -> Status {
+         if (text != "true" && text != "false") {
+           return invalid_argument("classification must be true or false (got '" + text + "')");
+         }
+         p.classification = text == "true";
+         return ok_status();
+       },
+       [](const P& p) { return std::string(p.classification ? "true" : "false"); }},
+      float_entry("probe_offset_limit", "relocation limit, fraction of spacing, [0, 0.49]",
+                  &P::probe_offset_limit),
+      float_entry("min_frontface_distance", "relocation clearance, fraction of spacing, [0, 0.5]",
+                  &P::min_frontface_distance),
+      float_entry("backface_threshold", "back-face fraction meaning inside, (0, 1]",
+                  &P::backface_threshold),
+      {{"max_rays_per_update", "probe rays per update, 0: no cap, else >= one probe's rays"},
+       [](P& p, const std::string& text) -> Status {
+         DDGI_ASSIGN_OR_RETURN(const int64_t v, parse_int(text, "max_rays_per_update"));
+         if (v < 0) return invalid_argument("max_rays_per_update must be >= 0");
+         p.max_rays_per_update = static_cast<uint64_t>(v);
+         return ok_status();
+       },
+       [](const P& p) { return std::to_string(p.max_rays_per_update); }},
       uint_entry("seed", "seed of the random ray rotations", &P::seed),
   };
   return table;

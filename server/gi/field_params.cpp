@@ -63,6 +63,22 @@ Status validate(const IrradianceFieldParams& p) {
   DDGI_TRY(in_range("self_shadow_bias", p.self_shadow_bias, 0.0f, 2.0f));
   DDGI_TRY(in_range("energy_conservation", p.energy_conservation, 0.0f, 1.0f));
   DDGI_TRY(in_range("weight_crush_threshold", p.weight_crush_threshold, 0.0f, 1.0f));
+  DDGI_TRY(in_range("relocation_iterations", p.relocation_iterations, 0u, 16u));
+  DDGI_TRY(in_range("probe_offset_limit", p.probe_offset_limit, 0.0f, 0.49f));
+  DDGI_TRY(in_range("min_frontface_distance", p.min_frontface_distance, 0.0f, 0.5f));
+  DDGI_TRY(in_range("backface_threshold", p.backface_threshold, 1e-6f, 1.0f));
+  if ((p.relocation_iterations > 0 || p.classification) && p.fixed_rays < 8) {
+    return invalid_argument(
+        "relocation and classification need fixed_rays >= 8 (got " +
+        std::to_string(p.fixed_rays) + "); set relocation_iterations=0 and classification=false "
+        "to run without fixed rays");
+  }
+  const uint64_t rays_per_probe_total = p.rays_per_probe + p.fixed_rays;
+  if (p.max_rays_per_update != 0 && p.max_rays_per_update < rays_per_probe_total) {
+    return invalid_argument("max_rays_per_update must be 0 (no cap) or at least one probe's " +
+                            std::to_string(rays_per_probe_total) + " rays (got " +
+                            std::to_string(p.max_rays_per_update) + ")");
+  }
   const AtlasLayout layout = atlas_layout(p);
   const glm::uvec2 largest = glm::max(layout.irradiance_size, layout.distance_size);
   if (largest.x > gpu::kMaxAtlasDimension || largest.y > gpu::kMaxAtlasDimension) {
@@ -134,7 +150,8 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
   const uint64_t irradiance_tile = uint64_t(p.irradiance_texels + 2) * (p.irradiance_texels + 2);
   const uint64_t distance_tile = uint64_t(p.distance_texels + 2) * (p.distance_texels + 2);
   const uint64_t rays = probes * (p.rays_per_probe + p.fixed_rays);
-  return probes * (irradiance_tile * 16 + distance_tile * 8 + sizeof(gpu::ProbeState)) +
+  return probes * (irradiance_tile * 16 + distance_tile * 8 + sizeof(gpu::ProbeState) +
+                   sizeof(uint32_t)) +
          rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
 }
 

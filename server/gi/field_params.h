@@ -76,6 +76,30 @@ struct IrradianceFieldParams {
   // Weights below this are crushed (w^3 / c^2), in [0, 1]. 0.2 (RTXGI, thesis eq. 4.10).
   float weight_crush_threshold = 0.2f;
 
+  // --- Probe management (docs/probe-management.md) -------------------------------------------
+  // Relocation passes at initialisation and when geometry moves, in [0, 16]. 5: enough for
+  // almost every probe to settle, few enough that no probe oscillates through tangent faces
+  // (2021 paper, sec. 5). 0 leaves probes on their grid points.
+  uint32_t relocation_iterations = 5;
+  // Classify probes into Off / Sleeping / Vigilant / Awake and trace only active ones. Off
+  // probes (inside geometry) are also left out of shading (thesis Fig. 6.2).
+  bool classification = true;
+  // Relocation keeps each probe within this fraction of the spacing of its grid point, per
+  // axis, in [0, 0.49]. 0.45: probes stay in their cell, so cage lookups stay valid.
+  float probe_offset_limit = 0.45f;
+  // Relocation moves probes at least this far from front faces, as a fraction of the smallest
+  // spacing, in [0, 0.5]. 0.4: probes hugging a surface make the Chebyshev test fragile; on the
+  // two-room scene 0.1 / 0.25 / 0.4 leave 0.28 / 0.22 / 0.17% of the lit room's light in the
+  // dark room (docs/probe-management.md).
+  float min_frontface_distance = 0.4f;
+  // A probe with more back-face hits than this fraction of its fixed rays is inside
+  // geometry, in (0, 1]. 0.25: the 2021 paper's threshold.
+  float backface_threshold = 0.25f;
+  // Probe rays (blended + fixed) one update may trace; 0: no cap. When the active probes need
+  // more, each update traces a round-robin window of them. Must be 0 or at least one probe's
+  // rays. Shadow rays are not counted.
+  uint64_t max_rays_per_update = 0;
+
   // --- Determinism ----------------------------------------------------------------------------
   // Seed of the per-update random ray rotation: the same seed gives the same field.
   uint32_t seed = 1;

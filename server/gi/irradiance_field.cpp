@@ -1,5 +1,6 @@
 #include "gi/irradiance_field.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -13,7 +14,7 @@ namespace {
 static_assert(sizeof(gpu::FieldConstants) % 4 == 0 && sizeof(gpu::FieldConstants) <= 65536,
               "FieldConstants is written with vkCmdUpdateBuffer");
 static_assert(sizeof(gpu::ProbeRay) == 64);
-static_assert(sizeof(gpu::FieldDispatch) == 16);
+static_assert(sizeof(gpu::FieldDispatch) == 32);
 
 constexpr uint32_t kMaxTimedPasses = 16;
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
@@ -44,6 +45,10 @@ glm::mat4 random_rotation(uint32_t seed, uint64_t update) {
 
 bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b) {
   return a.counts != b.counts || a.rays_per_probe != b.rays_per_probe ||
+         a.relocation_iterations != b.relocation_iterations ||
+         a.classification != b.classification || a.probe_offset_limit != b.probe_offset_limit ||
+         a.min_frontface_distance != b.min_frontface_distance ||
+         a.backface_threshold != b.backface_threshold ||
          a.fixed_rays != b.fixed_rays || a.irradiance_texels != b.irradiance_texels ||
          a.distance_texels != b.distance_texels;
 }
@@ -77,7 +82,8 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
           context_,
           {{gpu::kFieldUpdateBindingRays},
            {gpu::kFieldUpdateBindingIrradianceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-           {gpu::kFieldUpdateBindingDistanceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+           {gpu::kFieldUpdateBindingDistanceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+           {gpu::kFieldUpdateBindingProbeList}},
           1, "field update set"));
   DDGI_ASSIGN_OR_RETURN(query_layout_,
                         vk::DescriptorLayout::create(context_, {{0}, {1}}, 1, "field query set"));
@@ -97,6 +103,7 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   DDGI_ASSIGN_OR_RETURN(blend_irradiance_, kernel("field_blend_irradiance", false));
   DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
   DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
+  DDGI_ASSIGN_OR_RETURN(manage_, kernel("field_probes", false));
   DDGI_ASSIGN_OR_RETURN(
       query_,
       vk::Kernel::create(context_,
@@ -149,6 +156,10 @@ Status IrradianceField::create_resources() {
                                            vk::MemoryUsage::kDeviceLocal, "probe states"));
   DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
                                                   vk::MemoryUsage::kDeviceLocal, "probe rays"));
+  DDGI_ASSIGN_OR_RETURN(probe_list_,
+                        vk::Buffer::create(context_, probes * sizeof(uint32_t),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           vk::MemoryUsage::kUpload, "probe list"));
   const VkImageUsageFlags image_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -173,19 +184,23 @@ Status IrradianceField::create_resources() {
       .buffer(gpu::kFieldUpdateBindingRays, rays_)
       .storage_image(gpu::kFieldUpdateBindingIrradianceOut, irradiance_)
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
+      .buffer(gpu::kFieldUpdateBindingProbeList, probe_list_)
       .apply(context_.device());
   return reset();
 }
 
 Status IrradianceField::reset() {
   update_index_ = 0;
-  std::vector<gpu::ProbeState> states(probe_count(params_));
+  const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
+  std::vector<gpu::ProbeState> states(probes);
   for (gpu::ProbeState& s : states) s = {glm::vec3(0.0f), gpu::kProbeResetHistory};
   DDGI_TRY(vk::update_buffer(
       context_, probes_,
       {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
+  scheduler_ = ProbeScheduler(probes);
+  seen_moves_ = scene_.move_count();
   const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
-  return context_.submit_and_wait([&](VkCommandBuffer cmd) {
+  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
     const VkClearColorValue zero{};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -195,7 +210,134 @@ Status IrradianceField::reset() {
       vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
     }
     vk::barrier_all(cmd);
-  });
+  }));
+  if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
+  std::vector<uint32_t> all(probes);
+  for (uint32_t p = 0; p < probes; ++p) all[p] = p;
+  return manage_probes(all, params_.relocation_iterations > 0, {});
+}
+
+Status IrradianceField::write_probe_list(const std::vector<uint32_t>& probes) {
+  std::memcpy(probe_list_.mapped(), probes.data(), probes.size() * sizeof(uint32_t));
+  probe_list_size_ = static_cast<uint32_t>(probes.size());
+  return ok_status();
+}
+
+void IrradianceField::record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel,
+                                    uint32_t list_start, uint32_t list_size, uint32_t probes,
+                                    uint32_t per_probe, uint32_t first_ray, uint32_t mode) {
+  const uint64_t count = uint64_t(probes) * per_probe;
+  const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
+  const gpu::FieldDispatch push{static_cast<uint32_t>(count), d.row_width, list_start,
+                                std::max(list_size, 1u),         per_probe,  first_ray,
+                                mode,                            0};
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
+  kernel.dispatch(cmd, sets, &push, d.size);
+  vk::barrier_all(cmd);
+}
+
+Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool relocate,
+                                      const std::vector<Bounds>& dynamic_regions) {
+  if (probes.empty()) return ok_status();
+  DDGI_TRY(write_probe_list(probes));
+  probe_list_is_active_ = false;
+  const uint32_t n = static_cast<uint32_t>(probes.size());
+  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  // One submission: (trace fixed rays, relocate) x iterations, trace fixed rays, classify.
+  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+    vk::barrier_all(cmd);
+    const uint32_t iterations = relocate ? params_.relocation_iterations : 0;
+    for (uint32_t i = 0; i < iterations; ++i) {
+      record_linear(cmd, trace_, 0, n, n, params_.fixed_rays);
+      record_linear(cmd, manage_, 0, n, n, 1, 0, gpu::kProbeModeRelocate);
+    }
+    if (params_.classification) {
+      record_linear(cmd, trace_, 0, n, n, params_.fixed_rays);
+      record_linear(cmd, manage_, 0, n, n, 1, 0, gpu::kProbeModeClassify);
+    }
+  }));
+  if (!params_.classification) return ok_status();
+
+  // The GPU's verdicts, then what only the CPU knows: probes near moving objects are Awake.
+  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_states());
+  std::vector<uint8_t> verdicts = scheduler_.states();
+  bool relabelled = false;
+  for (uint32_t p : probes) {
+    uint32_t state = (states[p].flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift;
+    const glm::ivec3 c3(int(p % uint32_t(params_.counts.x)),
+                        int(p / uint32_t(params_.counts.x) % uint32_t(params_.counts.y)),
+                        int(p / uint32_t(params_.counts.x) / uint32_t(params_.counts.y)));
+    const glm::vec3 position = params_.origin + params_.spacing * glm::vec3(c3) + states[p].offset;
+    for (const Bounds& region : dynamic_regions) {
+      const bool inside = glm::all(glm::greaterThanEqual(position, region.min)) &&
+                          glm::all(glm::lessThanEqual(position, region.max));
+      if (inside && state != gpu::kProbeOff) state = gpu::kProbeAwake;
+    }
+    const uint32_t before = verdicts[p];
+    const bool was_active = before == gpu::kProbeVigilant || before == gpu::kProbeAwake;
+    const bool is_active = state == gpu::kProbeVigilant || state == gpu::kProbeAwake;
+    // A probe that starts being traced has no valid history (2021 paper: Newly Awake/Vigilant).
+    if (is_active && !was_active) states[p].flags |= gpu::kProbeResetHistory;
+    const uint32_t flags = (states[p].flags & ~gpu::kProbeStateMask) |
+                           (state << gpu::kProbeStateShift);
+    relabelled = relabelled || flags != states[p].flags;
+    states[p].flags = flags;
+    verdicts[p] = static_cast<uint8_t>(state);
+  }
+  scheduler_.set_states(verdicts);
+  if (!relabelled) return ok_status();
+  return vk::update_buffer(
+      context_, probes_,
+      {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])});
+}
+
+Status IrradianceField::prepare() {
+  if (scene_.move_count() == seen_moves_) return ok_status();
+  bool everything = false;
+  std::vector<Bounds> regions = scene_.moved_regions(seen_moves_, &everything);
+  seen_moves_ = scene_.move_count();
+  if (!params_.classification) return ok_status();
+  const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
+  std::vector<uint32_t> affected;
+  if (everything) {
+    for (uint32_t p = 0; p < probes; ++p) affected.push_back(p);
+    regions = {scene_.bounds()};
+  } else {
+    // Grow each region by a cell and the self-shadow bias (2021 paper, fig. 10): probes that
+    // can be in the cage of a point on the moved object, before and after the move.
+    const float min_spacing = std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
+    const glm::vec3 grow = params_.spacing + glm::vec3(0.75f * min_spacing * params_.self_shadow_bias);
+    for (Bounds& r : regions) {
+      r.min -= grow;
+      r.max += grow;
+    }
+    for (uint32_t p = 0; p < probes; ++p) {
+      const glm::ivec3 c3(int(p % uint32_t(params_.counts.x)),
+                          int(p / uint32_t(params_.counts.x) % uint32_t(params_.counts.y)),
+                          int(p / uint32_t(params_.counts.x) / uint32_t(params_.counts.y)));
+      const glm::vec3 grid = params_.origin + params_.spacing * glm::vec3(c3);
+      for (const Bounds& r : regions) {
+        // The probe may sit up to the offset limit from its grid point.
+        const glm::vec3 slack = params_.probe_offset_limit * params_.spacing;
+        if (glm::all(glm::greaterThanEqual(grid + slack, r.min)) &&
+            glm::all(glm::lessThanEqual(grid - slack, r.max))) {
+          affected.push_back(p);
+          break;
+        }
+      }
+    }
+  }
+  // Probes are not relocated around moving geometry: that would make them unstable (2021
+  // paper, sec. 5); they are reclassified where it moved.
+  return manage_probes(affected, false, regions);
+}
+
+Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
+  std::vector<gpu::ProbeState> states(probe_count(params_));
+  DDGI_TRY(vk::download_buffer(context_, probes_, states.data(),
+                               states.size() * sizeof(gpu::ProbeState)));
+  return states;
 }
 
 Status IrradianceField::set_params(const IrradianceFieldParams& params) {
@@ -241,40 +383,52 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.max_visibility_distance = 1.5f * glm::length(params_.spacing);
   c.ray_rotation = random_rotation(params_.seed, update_index_);
   c.direct_mode = static_cast<uint32_t>(direct_mode);
+  c.probe_offset_limit = params_.probe_offset_limit;
+  c.min_frontface_distance =
+      params_.min_frontface_distance *
+      std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
+  c.backface_threshold = params_.backface_threshold;
   return c;
 }
 
 uint64_t IrradianceField::rays_per_update() const {
-  const uint64_t probes = probe_count(params_);
-  return probes * (params_.rays_per_probe + params_.fixed_rays) +
-         probes * params_.rays_per_probe * scene_.scene().lights.size();
+  return last_update_probe_rays_ + last_update_shaded_rays_ * scene_.scene().lights.size();
 }
 
 void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
                                     DirectMode direct_mode) {
+  if (scheduler_.take_active_changed() || !probe_list_is_active_) {
+    (void)write_probe_list(scheduler_.active());
+    probe_list_is_active_ = true;
+  }
+  const uint32_t total_rays = params_.rays_per_probe + params_.fixed_rays;
+  const uint32_t budget_probes =
+      params_.max_rays_per_update == 0
+          ? 0
+          : static_cast<uint32_t>(std::max<uint64_t>(1, params_.max_rays_per_update / total_rays));
+  const ProbeScheduler::Window window = scheduler_.next_window(budget_probes);
+  last_update_probe_rays_ = uint64_t(window.count) * total_rays;
+  last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
+
   const gpu::FieldConstants c = constants(direct_mode);
   vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
   vk::barrier_all(cmd);
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
-  const uint64_t probes = probe_count(params_);
-  auto run = [&](const vk::Kernel& kernel, const char* pass, uint64_t count) {
-    const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
-    const gpu::FieldDispatch push{static_cast<uint32_t>(count), d.row_width, 0, 0};
-    timer.begin_pass(cmd, pass);
-    kernel.dispatch(cmd, sets, &push, d.size);
-    timer.end_pass(cmd);
-    vk::barrier_all(cmd);
-  };
   const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
-  run(trace_, "field trace", probes * (params_.rays_per_probe + params_.fixed_rays));
-  run(shade_, "field shade", probes * params_.rays_per_probe);
-  run(blend_irradiance_, "blend irradiance", probes * ti * ti);
-  run(blend_distance_, "blend distance", probes * td * td);
-  run(borders_, "borders", probes * 4 * (std::max(ti, td) + 1));
+  auto run = [&](const vk::Kernel& kernel, const char* pass, uint32_t per_probe) {
+    timer.begin_pass(cmd, pass);
+    record_linear(cmd, kernel, window.start, probe_list_size_, window.count, per_probe);
+    timer.end_pass(cmd);
+  };
+  run(trace_, "field trace", total_rays);
+  run(shade_, "field shade", params_.rays_per_probe);
+  run(blend_irradiance_, "blend irradiance", ti * ti);
+  run(blend_distance_, "blend distance", td * td);
+  run(borders_, "borders", 4 * (std::max(ti, td) + 1));
   ++update_index_;
 }
 
 Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, DirectMode direct_mode) {
+  DDGI_TRY(prepare());
   for (uint32_t i = 0; i < count; ++i) {
     DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
       timer_.begin_frame(cmd);
@@ -312,7 +466,7 @@ Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<Irradian
   const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
   const uint32_t count = static_cast<uint32_t>(input.size());
   const vk::LinearDispatch d = vk::linear_dispatch(count);
-  const gpu::FieldDispatch push{count, d.row_width, 0, 0};
+  const gpu::FieldDispatch push{count, d.row_width, 0, 1, 1, 0, 0, 0};
   DDGI_TRY(context_.submit_and_wait(
       [&](VkCommandBuffer cmd) { query_.dispatch(cmd, sets, &push, d.size); }));
   std::vector<glm::vec4> answers(input.size());

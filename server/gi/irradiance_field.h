@@ -9,6 +9,7 @@
 
 #include "core/result.h"
 #include "gi/field_params.h"
+#include "gi/probe_scheduler.h"
 #include "render/frame_types.h"
 #include "render/gpu_scene.h"
 #include "shared/field_data.h"
@@ -38,7 +39,11 @@ class IrradianceField {
   // Drops all history: every probe starts over at its next update.
   Status reset();
 
-  // Records one update into `cmd`, timing its passes with `timer`.
+  // Brings probe states up to date with moved geometry (reclassifies probes near moved
+  // instances, waking sleeping ones). Call before recording updates; it submits GPU work.
+  Status prepare();
+  // Records one update into `cmd`, timing its passes with `timer`: the next window of active
+  // probes (all of them unless max_rays_per_update caps it).
   void record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode);
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
@@ -59,7 +64,13 @@ class IrradianceField {
   VkDescriptorSet sampling_set() const { return sampling_set_; }
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   uint64_t updates() const { return update_index_; }
-  // Rays traced by one update: probe rays plus one shadow ray per light per shaded ray.
+  ProbeStateCounts probe_counts() const { return scheduler_.counts(); }
+  const ProbeScheduler& scheduler() const { return scheduler_; }
+  // Every probe's offset and flags (state in bits 8..15), for dumps and tests.
+  Result<std::vector<gpu::ProbeState>> read_probe_states();
+  // Probe rays (blended + fixed) the last recorded update traced.
+  uint64_t last_update_probe_rays() const { return last_update_probe_rays_; }
+  // Rays traced by the last update: probe rays plus one shadow ray per light per shaded ray.
   uint64_t rays_per_update() const;
 
  private:
@@ -67,6 +78,15 @@ class IrradianceField {
   Status create_layouts_and_kernels(vk::TraceBackend backend);
   Status create_resources();
   gpu::FieldConstants constants(DirectMode direct_mode) const;
+  // Moves probes out of geometry and classifies them, for the probes in `probes` (all of them
+  // at initialisation, those near moved geometry later). `relocate`: run the relocation passes
+  // first. `dynamic_regions`: where moving objects are; active probes there are Awake.
+  Status manage_probes(const std::vector<uint32_t>& probes, bool relocate,
+                       const std::vector<Bounds>& dynamic_regions);
+  Status write_probe_list(const std::vector<uint32_t>& probes);
+  void record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel, uint32_t list_start,
+                     uint32_t list_size, uint32_t probes, uint32_t per_probe,
+                     uint32_t first_ray = 0, uint32_t mode = 0);
   Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels);
 
   vk::Context& context_;
@@ -88,11 +108,19 @@ class IrradianceField {
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
   vk::Kernel query_;
+  vk::Kernel manage_;
   vk::GpuTimer timer_;
 
   vk::Buffer constants_;
   vk::Buffer probes_;
   vk::Buffer rays_;
+  vk::Buffer probe_list_;  // host-visible: the probes the next dispatches work on
+  uint32_t probe_list_size_ = 0;
+  bool probe_list_is_active_ = false;  // else it holds probes being managed
+  ProbeScheduler scheduler_;
+  uint64_t seen_moves_ = 0;  // GpuScene::move_count() already handled
+  uint64_t last_update_probe_rays_ = 0;
+  uint64_t last_update_shaded_rays_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
   vk::Sampler sampler_;

@@ -14,6 +14,8 @@ namespace {
 
 // Every scene's set 0 has this layout, so kernels built once serve any scene.
 constexpr uint32_t kMaxSceneTextures = 4096;
+// Instance moves remembered for fields that catch up on them (GpuScene::moved_regions).
+constexpr size_t kMaxLoggedMoves = 1024;
 
 constexpr VkBufferUsageFlags kGeometryUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
@@ -74,6 +76,13 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(vk::Context& context, const S
   std::unique_ptr<GpuScene> gpu(new GpuScene(context));
   gpu->scene_ = scene;
   gpu->bounds_ = scene.world_bounds();
+  for (const Mesh& mesh : scene.meshes) {
+    Bounds local;
+    for (const Primitive& prim : mesh.primitives) {
+      for (const glm::vec3& p : prim.positions) local.grow(p);
+    }
+    gpu->mesh_bounds_.push_back(local);
+  }
   const uint64_t before = context.allocated_bytes();
   DDGI_TRY(gpu->upload_geometry());
   DDGI_TRY(gpu->upload_materials());
@@ -354,6 +363,30 @@ Status GpuScene::create_descriptors() {
   return ok_status();
 }
 
+Bounds GpuScene::instance_bounds(size_t instance) const {
+  Bounds world;
+  const Instance& inst = scene_.instances[instance];
+  if (inst.mesh < 0 || mesh_bounds_[inst.mesh].empty()) return world;
+  const Bounds& local = mesh_bounds_[inst.mesh];
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
+                      (corner & 2) ? local.max.y : local.min.y,
+                      (corner & 4) ? local.max.z : local.min.z);
+    world.grow(glm::vec3(inst.transform * glm::vec4(p, 1.0f)));
+  }
+  return world;
+}
+
+std::vector<Bounds> GpuScene::moved_regions(uint64_t after_move, bool* everything) const {
+  *everything = move_count_ - after_move > move_log_.size();
+  std::vector<Bounds> regions;
+  if (*everything) return regions;
+  for (uint64_t i = move_log_.size() - (move_count_ - after_move); i < move_log_.size(); ++i) {
+    regions.push_back(move_log_[i]);
+  }
+  return regions;
+}
+
 Status GpuScene::set_instance_transform(size_t instance, const glm::mat4& object_to_world) {
   if (instance >= scene_.instances.size()) {
     return invalid_argument("instance " + std::to_string(instance) +
@@ -370,7 +403,16 @@ Status GpuScene::set_instance_transform(size_t instance, const glm::mat4& object
   if (std::abs(glm::determinant(glm::mat3(object_to_world))) < 1e-30f) {
     return invalid_argument("instance transform is singular");
   }
+  Bounds moved = instance_bounds(instance);
   scene_.instances[instance].transform = object_to_world;
+  const Bounds after = instance_bounds(instance);
+  if (!after.empty()) {
+    moved.grow(after.min);
+    moved.grow(after.max);
+  }
+  move_log_.push_back(moved);
+  if (move_log_.size() > kMaxLoggedMoves) move_log_.pop_front();
+  ++move_count_;
   ++revision_;
   DDGI_TRY(upload_instances());
   DDGI_TRY(upload_emitters());

@@ -4,6 +4,7 @@
 // existing BLASes, which are never rebuilt for a transform change.
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -35,6 +36,13 @@ class GpuScene {
 
   // Moves one instance (index into Scene::instances); rebuilds the TLAS.
   Status set_instance_transform(size_t instance, const glm::mat4& object_to_world);
+  // World regions where geometry moved after `after_move` moves (each move contributes the
+  // instance's bounds before and after), and the count of moves so far. `*everything` is set
+  // when the log no longer reaches back that far: treat the whole scene as changed.
+  std::vector<Bounds> moved_regions(uint64_t after_move, bool* everything) const;
+  uint64_t move_count() const { return move_count_; }
+  // World-space bounds of one instance as placed now.
+  Bounds instance_bounds(size_t instance) const;
   // Replaces every light.
   Status set_lights(const std::vector<Light>& lights);
 
@@ -55,6 +63,9 @@ class GpuScene {
   vk::Context& context_;
   Scene scene_;  // the CPU copy: the source of truth for updates
   Bounds bounds_;
+  std::vector<Bounds> mesh_bounds_;  // object space, per mesh
+  std::deque<Bounds> move_log_;      // regions of the last kMaxLoggedMoves moves
+  uint64_t move_count_ = 0;
   uint64_t gpu_bytes_ = 0;
   uint32_t triangle_count_ = 0;
   uint32_t emitter_count_ = 0;

@@ -193,6 +193,7 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   const std::span<const VkDescriptorSet> frame_sets(sets, 2);
   const glm::uvec3 size{settings.width, settings.height, 1};
 
+  if (field_ && settings.field_updates > 0) DDGI_TRY(field_->prepare());
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_.begin_frame(cmd);
     if (field_) {

@@ -38,6 +38,10 @@ every combination of --grids and --rays. Prints a markdown table (median millise
   --device NAME         Vulkan device name filter
 )";
 
+// Passes of one field update (IrradianceField::record_update); the rest are frame passes.
+const std::string kFieldPasses[] = {"field trace", "field shade", "blend irradiance",
+                                    "blend distance", "borders"};
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -111,9 +115,10 @@ Status run(int argc, char** argv) {
               vk::backend_name(context->default_backend()), settings.width, settings.height,
               static_cast<long long>(frames), static_cast<long long>(warmup));
   std::printf(
-      "| scene | triangles | probes | rays/probe | field MiB | trace | shade | blend irr. | "
-      "blend dist. | borders | field total | Mrays/s | primary | direct | indirect | tonemap | "
-      "frame total |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| scene | triangles | probes | traced / sleeping / off | rays/probe | field MiB | trace | "
+      "shade | blend irr. | blend dist. | borders | field total | Mrays/s | primary | direct | "
+      "indirect | tonemap | frame total |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
@@ -138,7 +143,9 @@ Status run(int argc, char** argv) {
           double field_ms = 0.0, frame_ms = 0.0;
           for (size_t p = 0; p < frame.pass_times.size(); ++p) {
             times[frame.pass_times[p].name].push_back(frame.pass_times[p].milliseconds);
-            (p < 5 ? field_ms : frame_ms) += frame.pass_times[p].milliseconds;
+            const bool field_pass = std::find(std::begin(kFieldPasses), std::end(kFieldPasses),
+                                              frame.pass_times[p].name) != std::end(kFieldPasses);
+            (field_pass ? field_ms : frame_ms) += frame.pass_times[p].milliseconds;
           }
           field_totals.push_back(field_ms);
           frame_totals.push_back(frame_ms);
@@ -146,11 +153,14 @@ Status run(int argc, char** argv) {
         const double field_ms = median(field_totals);
         const IrradianceFieldParams& p = field->params();
         const std::string name = scene_path.substr(scene_path.find_last_of('/') + 1);
+        const ProbeStateCounts counts = field->probe_counts();
         std::printf(
-            "| %s | %u | %dx%dx%d | %u | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f | "
-            "%.3f | %.3f | %.3f | %.3f | %.3f |\n",
+            "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %.1f | %.3f | %.3f | %.3f | %.3f | "
+            "%.3f | %.3f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f |\n",
             name.c_str(), gpu_scene->triangle_count(), p.counts.x, p.counts.y, p.counts.z,
-            p.rays_per_probe, double(field->gpu_bytes()) / (1 << 20), median(times["field trace"]),
+            static_cast<unsigned long long>(counts.active()),
+            static_cast<unsigned long long>(counts.sleeping),
+            static_cast<unsigned long long>(counts.off), p.rays_per_probe, double(field->gpu_bytes()) / (1 << 20), median(times["field trace"]),
             median(times["field shade"]), median(times["blend irradiance"]),
             median(times["blend distance"]), median(times["borders"]), field_ms,
             double(field->rays_per_update()) / (field_ms * 1e3), median(times["primary"]),

@@ -29,7 +29,7 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
   --camera px,py,pz,tx,ty,tz[,yfov]  position, target, vertical FOV in degrees
                                                           [the scene's camera, or a fitted one]
   --backend B           auto | query | pipeline                         [auto]
-  --view V              full | direct | indirect | albedo | normal      [full]
+  --view V              full | direct | indirect | albedo | normal | probes | atlas  [full]
   --direct M            shadow-rays | unshadowed                        [shadow-rays]
   --tonemap T           aces | reinhard | clamp                         [aces]
   --exposure X          linear multiplier before tone mapping           [1]
@@ -170,6 +170,9 @@ Status run(int argc, char** argv) {
     LOG_INFO << "irradiance field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
              << " probes, " << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
              << field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
+    const ProbeStateCounts counts = field->probe_counts();
+    LOG_INFO << "probe states: " << counts.vigilant << " vigilant, " << counts.awake << " awake, "
+             << counts.sleeping << " sleeping, " << counts.off << " off";
     const auto warm = field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
     if (!warm.ok()) return warm.error();
   }

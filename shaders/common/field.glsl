@@ -28,6 +28,10 @@ uint probe_index(ivec3 c) {
   return uint(c.x) + uint(field.counts.x) * (uint(c.y) + uint(field.counts.y) * uint(c.z));
 }
 
+uint probe_state(uint p) {
+  return (probe_states[p].flags & kProbeStateMask) >> kProbeStateShift;
+}
+
 vec3 probe_position(uint p) {
   return field.origin + field.spacing * vec3(probe_grid_coord(p)) + probe_states[p].offset;
 }
@@ -91,6 +95,9 @@ vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
     const ivec3 offset = ivec3(i & 1u, (i >> 1) & 1u, (i >> 2) & 1u);
     const ivec3 coord = min(base + offset, last);
     const uint probe = probe_index(coord);
+    // Probes inside geometry see only back faces: they would darken what they touch (thesis
+    // Fig. 6.2, the 2021 paper's Off state).
+    if (probe_state(probe) == kProbeOff) continue;
     const vec3 probe_pos = probe_position(probe);
 
     // Trilinear weight; axes with one probe give all weight to it.

@@ -3,22 +3,18 @@
 // Field update, pass 4: each distance texel blends the power-cosine weighted mean of hit
 // distances and squared distances (thesis eq. 4.14-4.16). Back-face hits are shortened
 // (2021 paper, sec. 4.1); everything is clamped to the visibility range.
-#include "common/field.glsl"
-#include "common/dispatch.glsl"
+#include "common/field_update.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
-layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonly buffer Rays {
   ProbeRay rays[];
 };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDistanceOut, rg32f) uniform image2D distance_out;
 
 void main() {
-  const uint id = linear_invocation(pc.row_width);
-  if (id >= pc.count) return;
+  uint probe, t;
+  if (!field_item(probe, t)) return;
   const uint texels = field.distance_texels;
-  const uint probe = id / (texels * texels);
-  const uint t = id % (texels * texels);
   const uvec2 ij = uvec2(t % texels, t / texels);
   const vec3 texel_direction = octahedral_texel_direction(ij, texels);
 

@@ -3,11 +3,9 @@
 // Field update, pass 3: each irradiance texel blends the cosine-weighted mean radiance of this
 // update's rays into its history (2021 paper, eq. 1, perceptual encoding and per-texel
 // hysteresis of sec. 4.2-4.3).
-#include "common/field.glsl"
-#include "common/dispatch.glsl"
+#include "common/field_update.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
-layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonly buffer Rays {
   ProbeRay rays[];
 };
@@ -16,11 +14,9 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingIrradianceOut, rgba32
 float max_component(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 void main() {
-  const uint id = linear_invocation(pc.row_width);
-  if (id >= pc.count) return;
+  uint probe, t;
+  if (!field_item(probe, t)) return;
   const uint texels = field.irradiance_texels;
-  const uint probe = id / (texels * texels);
-  const uint t = id % (texels * texels);
   const uvec2 ij = uvec2(t % texels, t / texels);
   const vec3 texel_direction = octahedral_texel_direction(ij, texels);
 

@@ -4,11 +4,9 @@
 // (mirrored along each edge, opposite corners at the corners) so bilinear lookups near an
 // edge blend with the texels that are its neighbours on the sphere. Ends the update: clears
 // the probes' reset-history flags.
-#include "common/field.glsl"
-#include "common/dispatch.glsl"
+#include "common/field_update.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
-layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingIrradianceOut, rgba32f) uniform image2D irradiance_out;
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDistanceOut, rg32f) uniform image2D distance_out;
 
@@ -36,11 +34,8 @@ void border_texel(uint b, int n, out ivec2 dst, out ivec2 src) {
 }
 
 void main() {
-  const uint id = linear_invocation(pc.row_width);
-  if (id >= pc.count) return;
-  const uint per_probe = 4u * (max(field.irradiance_texels, field.distance_texels) + 1u);
-  const uint probe = id / per_probe;
-  const uint b = id % per_probe;
+  uint probe, b;
+  if (!field_item(probe, b)) return;
 
   ivec2 dst, src;
   if (b < 4u * (field.irradiance_texels + 1u)) {

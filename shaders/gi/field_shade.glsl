@@ -4,18 +4,15 @@
 // direct light at the hit, and the previous field's irradiance times albedo (multiple
 // bounces). Back faces carry nothing (2021 paper, sec. 4.1); misses carry the environment.
 #include "common/lights.glsl"
-#include "common/field.glsl"
-#include "common/dispatch.glsl"
+#include "common/field_update.glsl"
 #include "shared/frame_data.h"
 
-layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) buffer Rays { ProbeRay rays[]; };
 
 void main() {
-  const uint id = linear_invocation(pc.row_width);
-  if (id >= pc.count) return;
-  const uint probe = id / field.rays_per_probe;
-  const uint r = field.fixed_rays + id % field.rays_per_probe;
+  uint probe, local;
+  if (!field_item(probe, local)) return;
+  const uint r = field.fixed_rays + local;
   const uint index = probe * rays_per_probe_total() + r;
   const ProbeRay ray = rays[index];
   const vec3 origin = probe_position(probe);

@@ -3,21 +3,19 @@
 // Field update, pass 1: every probe traces its rays (fixed ones first) and records the surfel
 // each ray finds.
 #include "common/trace.glsl"
-#include "common/field.glsl"
-#include "common/dispatch.glsl"
+#include "common/field_update.glsl"
 
-layout(push_constant, scalar) uniform Push { FieldDispatch pc; };
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) writeonly buffer Rays {
   ProbeRay rays[];
 };
 
 void main() {
-  const uint id = linear_invocation(pc.row_width);
-  if (id >= pc.count) return;
-  const uint total = rays_per_probe_total();
-  const uint probe = id / total;
+  uint probe, local;
+  if (!field_item(probe, local)) return;
+  const uint r = pc.first_ray + local;
+  const uint id = probe * rays_per_probe_total() + r;
   const vec3 origin = probe_position(probe);
-  const vec3 direction = probe_ray_direction(id % total);
+  const vec3 direction = probe_ray_direction(r);
   // Back faces are never culled: relocation and classification count them.
   const Hit hit = trace_closest(origin, direction, 0.0, field.max_ray_distance);
 

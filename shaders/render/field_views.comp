@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Inspection views of the irradiance field, drawn over the frame:
 //  probes: every probe as a sphere, shaded by the irradiance it stores in the direction of the
-//          sphere's normal (so a probe's sphere is a small picture of what it sees);
+//          sphere's normal (so a probe's sphere is a small picture of what it sees), with a rim
+//          coloured by its state: green vigilant, yellow awake, blue sleeping, red off;
 //  atlas:  the irradiance atlas (decoded) over the top half, the mean-distance atlas
 //          (normalised to the visibility range) over the bottom half.
 #extension GL_EXT_scalar_block_layout : require
@@ -78,7 +79,11 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
                                   atlas_uv(best_probe, n, field.irradiance_texels,
                                            field.irradiance_atlas_size),
                                   0.0).rgb;
-  return pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma));
+  const vec3 irradiance = pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma));
+  const vec3 state_colors[4] = vec3[4](vec3(0.1, 0.9, 0.1), vec3(0.9, 0.8, 0.1),
+                                       vec3(0.2, 0.4, 1.0), vec3(0.9, 0.1, 0.1));
+  const float rim = smoothstep(0.35, 0.1, abs(dot(n, d)));
+  return mix(irradiance, state_colors[min(probe_state(best_probe), 3u)], rim);
 }
 
 vec3 atlas_view(uvec2 pixel) {

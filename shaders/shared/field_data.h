@@ -24,14 +24,23 @@ DDGI_CONST uint kFieldUpdateSet = 1;
 DDGI_CONST uint kFieldUpdateBindingRays = 0;           // ProbeRay per traced ray
 DDGI_CONST uint kFieldUpdateBindingIrradianceOut = 1;  // image2D view of the irradiance atlas
 DDGI_CONST uint kFieldUpdateBindingDistanceOut = 2;    // image2D view of the distance atlas
+DDGI_CONST uint kFieldUpdateBindingProbeList = 3;      // uint probe index per list entry
 
 // Atlas layout: probe p's tile is (p % tiles_per_row, p / tiles_per_row); a tile is the
 // octahedral map plus a one-texel border copied from the opposite edges.
 DDGI_CONST uint kAtlasBorder = 1u;
 DDGI_CONST uint kMaxAtlasDimension = 16384u;
 
-// ProbeState::flags
+// ProbeState::flags, bits 0..7: conditions.
 DDGI_CONST uint kProbeResetHistory = 1u;  // no valid history: the next blend uses hysteresis 0
+// ProbeState::flags, bits 8..15: the probe's state (docs/probe-management.md).
+DDGI_CONST uint kProbeStateShift = 8u;
+DDGI_CONST uint kProbeStateMask = 0xFFu << 8u;
+DDGI_CONST uint kProbeVigilant = 0u;  // shades static geometry: traced every update
+DDGI_CONST uint kProbeAwake = 1u;     // woken by a moving object nearby: traced while it is near
+DDGI_CONST uint kProbeSleeping = 2u;  // no surface within reach: not traced
+DDGI_CONST uint kProbeOff = 3u;       // inside geometry: never traced, never sampled
+DDGI_CONST uint kProbeStateCount = 4u;
 
 // ProbeRay::flags
 DDGI_CONST uint kRayHit = 1u;
@@ -81,17 +90,26 @@ struct FieldConstants {
   float max_visibility_distance;  // distances are clamped here: 1.5 x the cell diagonal
   mat4 ray_rotation;              // this update's random rotation of the blended rays
   uint direct_mode;               // how probe-ray hits get direct light (frame_data kDirect*)
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  float probe_offset_limit;       // relocation keeps |offset| <= limit x spacing per axis
+  float min_frontface_distance;   // relocation keeps probes this far from front faces
+  float backface_threshold;       // more back-face hits than this fraction: inside geometry
 };
 
-// Push constants of the linear (one invocation per item) field kernels.
+// What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
+DDGI_CONST uint kProbeModeRelocate = 0u;  // move probes out of geometry and off front faces
+DDGI_CONST uint kProbeModeClassify = 1u;  // write each probe's state from its fixed rays
+
+// Push constants of the linear (one invocation per item) field kernels. The probes a dispatch
+// works on are a window of the probe list: list[(list_start + i) % list_size].
 struct FieldDispatch {
-  uint count;       // items in this dispatch
-  uint row_width;   // invocations per row when the dispatch is folded into 2D
+  uint count;           // invocations in this dispatch
+  uint row_width;       // invocations per row when the dispatch is folded into 2D
+  uint list_start;      // first entry of the window
+  uint list_size;       // entries in the probe list (the window wraps around)
+  uint per_probe;       // invocations per probe (rays, texels, border texels)
+  uint first_ray;       // ray index of the first ray a tracing dispatch handles
+  uint mode;            // kProbeMode* (relocate/classify kernel only)
   uint pad0;
-  uint pad1;
 };
 
 DDGI_NAMESPACE_END

@@ -7,48 +7,10 @@
 #include "render/gpu_scene.h"
 #include "scene/gltf_loader.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/gpu/two_rooms.h"
 
 namespace ddgi::test {
 namespace {
-
-// scenes/two_rooms_*.gltf: shell x in [-4.1, 3.9], y in [0, 3], z in [-2, 2]; the shared wall
-// spans x in [-0.01, 0.01] with a doorway at z in [-0.45, 0.45], y in [0, 2]; the lit room is
-// x < 0. Probes at x = -3.85 + 0.5 i: the nearest are at -0.35 and 0.15, none in the wall.
-IrradianceFieldParams two_room_grid() {
-  IrradianceFieldParams p;
-  p.origin = {-3.85f, 0.25f, -1.75f};
-  p.spacing = {0.5f, 0.5f, 0.5f};
-  p.counts = {16, 6, 8};
-  p.rays_per_probe = 128;
-  p.fixed_rays = 0;
-  p.hysteresis = 0.8f;
-  return p;
-}
-
-// Surface points of one room (side -1: lit, +1: dark), concentrated near the shared wall where
-// leaks show: the wall itself, the floor and ceiling beside it, and the far walls.
-std::vector<IrradianceQuery> room_points(float side) {
-  std::vector<IrradianceQuery> q;
-  const glm::vec3 wall_normal(side, 0.0f, 0.0f);
-  for (float y : {0.3f, 1.0f, 2.5f}) {
-    for (float z : {-1.5f, -0.9f, 0.9f, 1.5f}) {  // beside the (closed) door, not on it
-      q.push_back({{side * 0.0101f, y, z}, wall_normal, wall_normal});
-    }
-  }
-  for (float x : {0.2f, 0.6f, 1.5f, 3.0f}) {
-    for (float z : {-1.2f, 0.0f, 1.2f}) {
-      q.push_back({{side * x, 0.0001f, z}, {0, 1, 0}, {0, 1, 0}});
-      q.push_back({{side * x, 2.9999f, z}, {0, -1, 0}, {0, -1, 0}});
-    }
-  }
-  return q;
-}
-
-float mean_luminance(const std::vector<glm::vec3>& values) {
-  double sum = 0.0;
-  for (const glm::vec3& v : values) sum += 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
-  return values.empty() ? 0.0f : static_cast<float>(sum / values.size());
-}
 
 class LightLeakTest : public GpuTest {
  protected:

@@ -1,0 +1,61 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Probe management from each probe's fixed rays (traced just before):
+//  relocate: a probe that sees mostly back faces is inside geometry: it steps out through the
+//            closest back face; a probe too close to a front face steps away from it. Offsets
+//            stay within probe_offset_limit x spacing of the grid point (2021 paper, sec. 5).
+//  classify: inside -> Off; a front face within the cage diagonal -> Vigilant; else Sleeping
+//            (thesis sec. 6.1's relevant samples; the 2021 paper's states, sec. 6).
+#include "common/field_update.glsl"
+
+layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonly buffer Rays {
+  ProbeRay rays[];
+};
+
+void main() {
+  uint probe, local;
+  if (!field_item(probe, local)) return;
+  const uint n = field.fixed_rays;
+  const uint first = probe * rays_per_probe_total();
+  uint backfaces = 0u;
+  float closest_back = kFloatMax, closest_front = kFloatMax;
+  vec3 back_direction = vec3(0.0), front_direction = vec3(0.0);
+  for (uint r = 0u; r < n; ++r) {
+    const ProbeRay ray = rays[first + r];
+    if ((ray.flags & kRayHit) == 0u) continue;
+    if ((ray.flags & kRayFrontFace) != 0u) {
+      if (ray.distance < closest_front) {
+        closest_front = ray.distance;
+        front_direction = probe_ray_direction(r);
+      }
+    } else {
+      ++backfaces;
+      if (ray.distance < closest_back) {
+        closest_back = ray.distance;
+        back_direction = probe_ray_direction(r);
+      }
+    }
+  }
+  const bool inside = float(backfaces) > field.backface_threshold * float(n);
+
+  if (pc.mode == kProbeModeRelocate) {
+    const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+    vec3 offset = probe_states[probe].offset;
+    if (inside) {
+      // Through the closest back face, and a little further so the face is behind us.
+      offset += back_direction * (closest_back + 0.05 * min_spacing);
+    } else if (closest_front < field.min_frontface_distance) {
+      offset -= front_direction * (field.min_frontface_distance - closest_front);
+    }
+    const vec3 limit = field.probe_offset_limit * field.spacing;
+    probe_states[probe].offset = clamp(offset, -limit, limit);
+    probe_states[probe].flags |= kProbeResetHistory;  // it moved: its history is elsewhere
+  } else {
+    const float reach = length(field.spacing);  // the cage diagonal (thesis eq. 6.2's r)
+    const uint state = inside ? kProbeOff
+                              : (closest_front <= reach ? kProbeVigilant : kProbeSleeping);
+    probe_states[probe].flags =
+        (probe_states[probe].flags & ~kProbeStateMask) | (state << kProbeStateShift);
+  }
+}
