@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include <glm/gtc/matrix_access.hpp>
@@ -13,10 +14,16 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kMaxMagnitude = 1e9f;  // colours, intensities, ranges
 constexpr float kMaxCoordinate = 1e12f;
 
+// "%g" without the exponent's sign and padding: 1e9, not 1e+09.
 std::string num(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%g", value);
-  return text;
+  std::string out = text;
+  for (const char* noise : {"e+0", "e+"}) {
+    if (auto at = out.find(noise); at != std::string::npos) out.replace(at, strlen(noise), "e");
+  }
+  if (auto at = out.find("e-0"); at != std::string::npos) out.replace(at, 3, "e-");
+  return out;
 }
 
 std::string vec_text(const glm::vec3& v) {

@@ -211,7 +211,7 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
     DDGI_ASSIGN_OR_RETURN(options.direct_mode, direct_mode_from_proto(request->direct_mode()));
     DDGI_TRY(check_field_params(request->field_params()));
     options.field_assignments = assignments_of(request->field_params());
-    DDGI_TRY(sessions_.create(std::move(options), std::move(scene), reply, std::move(done)));
+    DDGI_TRY(sessions_.create(std::move(options), std::move(scene), reply, done));
     return ok_status();
   });
 }

@@ -3,6 +3,7 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -110,10 +111,12 @@ bool Server::shutdown() {
   } else {
     (void)encoder_.release();  // a stuck loop may still use it; the process is about to exit
   }
+  // Our streams have ended by now; what is left are calls like health watches and unary calls
+  // that fail at once: a second is plenty before gRPC cancels them.
   const auto left = options_.shutdown_grace - (std::chrono::steady_clock::now() - start);
-  const auto deadline =
-      std::chrono::system_clock::now() +
-      std::max<std::chrono::steady_clock::duration>(left, std::chrono::milliseconds(1000));
+  const auto wait = std::clamp<std::chrono::steady_clock::duration>(
+      left, std::chrono::milliseconds(100), std::chrono::milliseconds(1000));
+  const auto deadline = std::chrono::system_clock::now() + wait;
   server_->Shutdown(deadline);
   server_->Wait();
   metrics_http_.reset();

@@ -23,7 +23,7 @@ std::string SessionRegistry::new_id() {
 }
 
 Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::SessionInfo* reply,
-                               Completion done) {
+                               const Completion& done) {
   std::string id;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -52,7 +52,7 @@ Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::S
     tracker->done.notify_all();
   };
   const std::string label = scene.label;
-  Completion finish = [this, id, done = std::move(done)](const Status& status) {
+  Completion finish = [this, id, done](const Status& status) {
     if (!status.ok()) {
       LOG_INFO << "session failed to load session=" << id << ": " << status.error().message;
       (void)close(id, nullptr);

@@ -22,8 +22,9 @@ class SessionRegistry {
 
   // Starts a session; RESOURCE_EXHAUSTED beyond max_sessions. `done` runs once the scene is
   // loaded; when loading fails the session is closed again before `done` sees the error.
+  // On error `done` is not called (and not consumed): the caller answers.
   Status create(SessionOptions options, SceneRequest scene, v1::SessionInfo* reply,
-                Completion done);
+                const Completion& done);
   // INVALID_ARGUMENT for an empty id, NOT_FOUND for an unknown one.
   Result<std::shared_ptr<Session>> find(const std::string& session_id) const;
   // Removes the session; `on_closed` runs once its GPU memory is freed.

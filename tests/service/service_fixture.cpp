@@ -124,6 +124,7 @@ StreamWatcher::StreamWatcher(v1::RenderService::Stub& stub, v1::StreamFramesRequ
       }
       frames_.fetch_add(1);
     }
+    ended_ = true;
   });
 }
 
@@ -135,6 +136,20 @@ grpc::Status StreamWatcher::stop() {
   if (stopped_) return status_;
   stopped_ = true;
   context_.TryCancel();
+  thread_.join();
+  status_ = reader_->Finish();
+  return status_;
+}
+
+grpc::Status StreamWatcher::wait_end(double timeout_seconds) {
+  const auto end =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  while (!ended_ && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (stopped_) return status_;
+  stopped_ = true;
+  if (!ended_) context_.TryCancel();
   thread_.join();
   status_ = reader_->Finish();
   return status_;

@@ -71,11 +71,14 @@ class StreamWatcher {
   bool wait_for(uint64_t count, double timeout_seconds) const;
   // Cancels the stream and returns how it ended.
   grpc::Status stop();
+  // Waits for the server to end the stream (cancels after `timeout_seconds`); its status.
+  grpc::Status wait_end(double timeout_seconds = 30.0);
 
  private:
   grpc::ClientContext context_;
   std::unique_ptr<grpc::ClientReader<v1::Frame>> reader_;
   std::atomic<uint64_t> frames_{0};
+  std::atomic<bool> ended_{false};
   mutable std::mutex mutex_;
   v1::Frame last_;
   std::thread thread_;

@@ -1,0 +1,113 @@
+// A client that stops reading its stream: the server must keep at most a frame or two for it
+// (memory flat), count the frames it skips (the drop counter rises), and keep serving everyone
+// else at their rate. The stall lasts DDGI_SLOW_READER_SECONDS (default 4 so CI stays short;
+// the acceptance run uses 10).
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "tests/service/service_fixture.h"
+
+namespace ddgi::test {
+namespace {
+
+double stall_seconds() {
+  const char* text = std::getenv("DDGI_SLOW_READER_SECONDS");
+  if (text == nullptr || *text == '\0') return 4.0;
+  const double value = std::atof(text);
+  return value >= 1.0 && value <= 600.0 ? value : 4.0;
+}
+
+// Resident memory of this process (server and clients together), from /proc.
+double resident_mib() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+class SlowReaderTest : public ServiceTest {
+ protected:
+  void configure(service::ServerOptions& options) override { options.limits.max_fps = 25; }
+};
+
+TEST_F(SlowReaderTest, StalledClientCostsNothingAndOthersKeepTheirRate) {
+  const double stall = stall_seconds();
+  const std::string slow_session = create_session();
+  const std::string other_session = create_session();
+
+  // The slow client: its own connection with a small, fixed flow-control window (no BDP
+  // growth), as a client on a slow link would have. Frames of ~15 KB fill it in a few frames.
+  grpc::ChannelArguments args;
+  args.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+  args.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES, 64 * 1024);
+  auto slow_channel =
+      grpc::CreateCustomChannel(address(), grpc::InsecureChannelCredentials(), args);
+  auto slow_stub = v1::RenderService::NewStub(slow_channel);
+  v1::StreamFramesRequest slow_request;
+  slow_request.set_session_id(slow_session);
+  slow_request.mutable_settings()->set_width(160);
+  slow_request.mutable_settings()->set_height(120);
+  slow_request.mutable_settings()->set_jpeg_quality(100);
+  grpc::ClientContext slow_context;
+  auto slow_reader = slow_stub->StreamFrames(&slow_context, slow_request);
+  v1::Frame frame;
+  ASSERT_TRUE(slow_reader->Read(&frame));
+  const uint64_t jpeg_bytes = frame.jpeg().size();
+
+  // The other client, on another session and connection, reading as fast as frames come.
+  auto other_channel = grpc::CreateChannel(address(), grpc::InsecureChannelCredentials());
+  auto other_stub = v1::RenderService::NewStub(other_channel);
+  v1::StreamFramesRequest other_request;
+  other_request.set_session_id(other_session);
+  other_request.mutable_settings()->set_width(32);
+  other_request.mutable_settings()->set_height(24);
+  StreamWatcher other(*other_stub, other_request);
+  ASSERT_TRUE(other.wait_for(3, 30.0));
+
+  // Both streaming: the other client's rate while the slow one still reads.
+  std::atomic<bool> reading{true};
+  std::thread drain([&] {
+    v1::Frame f;
+    while (reading && slow_reader->Read(&f)) {
+    }
+  });
+  const double fps_before = other.measure_fps(1.5);
+  reading = false;
+  drain.join();  // from here on nobody reads the slow stream
+
+  const uint64_t dropped_before = server().metrics().frames_dropped.load();
+  std::this_thread::sleep_for(std::chrono::duration<double>(std::min(1.0, stall / 4)));
+  const double memory_early = resident_mib();
+  const double fps_during = other.measure_fps(stall - std::min(1.0, stall / 4));
+  const double memory_late = resident_mib();
+  const uint64_t dropped_during = server().metrics().frames_dropped.load() - dropped_before;
+
+  // The slow client reads again: first what the transport held before it stalled (a window's
+  // worth, written before the drops), then current frames that report how many it missed.
+  v1::Frame resumed;
+  uint64_t newest_dropped = 0;
+  int buffered = 0;
+  for (int i = 0; i < 200 && newest_dropped == 0 && slow_reader->Read(&resumed); ++i) {
+    newest_dropped = resumed.frames_dropped();
+    buffered += newest_dropped == 0 ? 1 : 0;
+  }
+  std::printf(
+      "slow reader: %.1f s stall, %llu-byte frames, %llu frames dropped, %d frames held "
+      "by the transport, memory %.1f -> %.1f MiB; other client %.1f fps before, %.1f "
+      "fps during\n",
+      stall, static_cast<unsigned long long>(jpeg_bytes),
+      static_cast<unsigned long long>(dropped_during), buffered, memory_early, memory_late,
+      fps_before, fps_during);
+  EXPECT_LT(buffered, 20) << "more frames were queued for the stalled client than a window holds";
+  EXPECT_GT(dropped_during, 5u) << "a stalled client must make the server drop frames";
+  EXPECT_GT(newest_dropped, 5u) << "the resumed stream reports what it skipped";
+  EXPECT_LT(memory_late - memory_early, 24.0) << "memory grew while a client stalled";
+  EXPECT_GT(fps_during, 0.6 * fps_before) << "the other client slowed down";
+  slow_context.TryCancel();
+  (void)slow_reader->Finish();
+}
+
+}  // namespace
+}  // namespace ddgi::test
