@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# The thin clients against a real ddgi-server: every ddgi-client command once (exit code and
+# the JSON fields that matter), a refused call (exit 1 with the gRPC code in JSON), atlas
+# conversion through OpenImageIO, and ddgi-viewer showing frames in a window under Xvfb (or
+# SDL's offscreen driver when Xvfb is missing), its screenshot compared with a served frame of
+# the same view.
+#   clients_test.sh SERVER CLIENT VIEWER COMPARE SCENE_ROOT
+set -euo pipefail
+server_bin=$1 client_bin=$2 viewer_bin=$3 compare_bin=$4 scene_root=$5
+work=$(mktemp -d)
+server=""
+cleanup() {
+  if [ -n "$server" ] && kill -0 "$server" 2>/dev/null; then kill -KILL "$server"; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+expect() {  # expect FILE PATTERN: the JSON in FILE contains PATTERN
+  grep -q -- "$2" "$1" || { cat "$1" >&2; fail "$1 lacks $2"; }
+}
+
+"$server_bin" --listen 127.0.0.1:0 --port-file "$work/port" --metrics-port -1 \
+  --scene-root "$scene_root" --max-fps 30 --validation >"$work/server.log" 2>&1 &
+server=$!
+for _ in $(seq 1 300); do [ -s "$work/port" ] && break; sleep 0.1; done
+[ -s "$work/port" ] || { cat "$work/server.log"; fail "ddgi-server did not start"; }
+address="127.0.0.1:$(cat "$work/port")"
+c() { "$client_bin" --server "$address" "$@"; }
+
+c info >"$work/info.json"; expect "$work/info.json" '"cornell_box"'
+c health >"$work/health.json"; expect "$work/health.json" '"SERVING"'
+c load cornell_box --warmup 2 --field counts=2,2,2 --field rays_per_probe=16 >"$work/load.json"
+session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$work/load.json" | head -n 1)
+[ -n "$session" ] || fail "no session id"
+c session --session "$session" >"$work/session.json"; expect "$work/session.json" '"ceiling_light"'
+c sessions >"$work/sessions.json"; expect "$work/sessions.json" "$session"
+c view-create --session "$session" --width 48 --height 36 --camera 0,1,3,0,1,0,45 >"$work/view.json"
+view=$(sed -n 's/^ *"view_id": "\([^"]*\)".*/\1/p' "$work/view.json" | head -n 1)
+c view-update --session "$session" --view "$view" --exposure 1.5 >"$work/update.json"
+expect "$work/update.json" '"exposure": 1.5'
+c camera --session "$session" --view "$view" --camera 0.2,1,2.5,0,0.8,0 >"$work/camera.json"
+expect "$work/camera.json" '"command_seq"'
+c light add --session "$session" --type point --position 0,1.5,0.5 --intensity 2 >"$work/light.json"
+expect "$work/light.json" '"light_id": 1'
+c light update --session "$session" --id 1 --color 1,0.5,0.5 >"$work/light2.json"
+expect "$work/light2.json" '"intensity": 2'
+c light remove --session "$session" --id 1 >/dev/null
+c transform --session "$session" --instance 6 --translate 0.1,0,0 >"$work/transform.json"
+expect "$work/transform.json" '"tall_box"'
+c params set --session "$session" hysteresis=0.5 >"$work/params.json"
+expect "$work/params.json" '"value": "0.5"'
+c params get --session "$session" >"$work/params_get.json"; expect "$work/params_get.json" '"probes": "8"'
+c frame --session "$session" --view "$view" --out "$work/frame.png" >"$work/frame.json"
+[ -s "$work/frame.png" ] || fail "no frame.png"
+c frame --session "$session" --width 32 --height 24 --out "$work/frame.jpg" >/dev/null
+[ -s "$work/frame.jpg" ] || fail "no frame.jpg"
+c stream --session "$session" --width 32 --height 24 --frames 6 --camera-moves 1 \
+  --move-interval 0.05 --out-dir "$work" >"$work/stream.json"
+expect "$work/stream.json" '"frames": 6'
+[ -s "$work/frame_000006.jpg" ] || fail "stream --out-dir wrote no frames"
+c atlas --session "$session" --kind irradiance --out "$work/irr.exr" --convert "$work/irr.png" \
+  >"$work/atlas.json"
+expect "$work/atlas.json" '"ATLAS_KIND_IRRADIANCE"'
+[ -s "$work/irr.png" ] && [ -s "$work/irr.exr.json" ] || fail "atlas conversion wrote nothing"
+c atlas --session "$session" --kind distance --format raw --out "$work/dist.raw" \
+  --convert "$work/dist.tif" >/dev/null
+[ -s "$work/dist.tif" ] || fail "raw atlas conversion wrote nothing"
+c query --session "$session" --points '0,0.1,0,0,1,0;0.3,0.5,0,-1,0,0' >"$work/query.json"
+expect "$work/query.json" '"irradiance"'
+
+# A refused call: exit status 1, the gRPC code in JSON on stdout.
+set +e
+c frame --session s0000000000000000 --width 8 --height 8 >"$work/refused.json" 2>/dev/null
+status=$?
+set -e
+[ "$status" = 1 ] || fail "a refused call exited $status"
+expect "$work/refused.json" '"code": "NOT_FOUND"'
+
+# The viewer: a window showing the stream, then its screenshot against a frame of that view.
+run_viewer() {
+  if command -v xvfb-run >/dev/null; then
+    xvfb-run -a -s "-screen 0 640x480x24" "$viewer_bin" "$@"
+  else
+    SDL_VIDEODRIVER=offscreen "$viewer_bin" "$@"
+  fi
+}
+run_viewer --server "$address" --session "$session" --width 96 --height 72 --frames 5 \
+  --quality 95 --screenshot "$work/viewer.png" >"$work/viewer.json"
+expect "$work/viewer.json" '"frames_shown": 5'
+c frame --session "$session" --width 96 --height 72 --quality 95 --out "$work/served.png" >/dev/null
+"$compare_bin" "$work/served.png" "$work/viewer.png" --json >"$work/compare.json"
+ssim=$(sed -n 's/.*"ssim": *\([0-9.]*\).*/\1/p' "$work/compare.json" | head -n 1)
+# The stats line darkens the top rows and the field keeps converging between the two frames;
+# a screenshot of the scene still keeps its structure (measured about 0.87), anything else not.
+awk -v s="$ssim" 'BEGIN { exit !(s > 0.7) }' || { cat "$work/compare.json"; fail "viewer screenshot SSIM $ssim"; }
+echo "viewer screenshot vs served frame: SSIM $ssim"
+
+c close --session "$session" >/dev/null
+kill -TERM "$server"
+wait "$server" || { cat "$work/server.log"; fail "ddgi-server exited badly"; }
+server=""
+echo "clients test passed"
