@@ -12,8 +12,24 @@ Result<Tonemap> parse_tonemap(const std::string& text) {
 Result<DirectMode> parse_direct_mode(const std::string& text) {
   if (text == "shadow-rays") return DirectMode::kTracedShadows;
   if (text == "unshadowed") return DirectMode::kUnshadowed;
-  return invalid_argument("direct mode must be one of shadow-rays, unshadowed (got '" + text +
-                          "')");
+  if (text == "shadow-field") return DirectMode::kShadowField;
+  if (text == "ao") return DirectMode::kAmbientOcclusion;
+  return invalid_argument(
+      "direct mode must be one of shadow-rays, unshadowed, shadow-field, ao (got '" + text + "')");
+}
+
+const char* direct_mode_name(DirectMode mode) {
+  switch (mode) {
+    case DirectMode::kTracedShadows:
+      return "shadow-rays";
+    case DirectMode::kUnshadowed:
+      return "unshadowed";
+    case DirectMode::kShadowField:
+      return "shadow-field";
+    case DirectMode::kAmbientOcclusion:
+      return "ao";
+  }
+  return "unknown";
 }
 
 Result<View> parse_view(const std::string& text) {

@@ -11,7 +11,13 @@ namespace ddgi {
 
 enum class Tonemap : uint32_t { kClamp = 0, kReinhard = 1, kAces = 2 };
 // How direct light from punctual lights is evaluated (per pixel and at probe-ray hits).
-enum class DirectMode : uint32_t { kTracedShadows = 0, kUnshadowed = 1 };
+// docs/shadow-field.md describes the shadow-field modes.
+enum class DirectMode : uint32_t {
+  kTracedShadows = 0,
+  kUnshadowed = 1,
+  kShadowField = 2,       // visibility reconstructed from the shadow field
+  kAmbientOcclusion = 3,  // shadow field, plus the sky through the field's AO
+};
 enum class View : uint32_t {
   kFull = 0,
   kDirect = 1,
@@ -23,7 +29,9 @@ enum class View : uint32_t {
 };
 
 Result<Tonemap> parse_tonemap(const std::string& text);
+// "shadow-rays", "unshadowed", "shadow-field", "ao".
 Result<DirectMode> parse_direct_mode(const std::string& text);
+const char* direct_mode_name(DirectMode mode);
 Result<View> parse_view(const std::string& text);
 
 }  // namespace ddgi

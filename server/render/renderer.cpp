@@ -10,17 +10,22 @@ namespace ddgi {
 namespace {
 
 constexpr uint32_t kMaxImageDimension = 16384;
-constexpr uint32_t kMaxTimedPasses = 5 * 64 + 8;  // field updates + frame passes
+// Field updates + shadow-field updates + frame passes.
+constexpr uint32_t kMaxTimedPasses = 5 * 64 + 4 * 64 + 8;
 
 static_assert(sizeof(gpu::GBufferTexel) == 40);
 static_assert(sizeof(gpu::PrimaryConstants) == 64);
-static_assert(sizeof(gpu::DirectConstants) == 16);
+static_assert(sizeof(gpu::DirectConstants) == 48);
 static_assert(sizeof(gpu::TonemapConstants) == 16);
 static_assert(sizeof(gpu::IndirectConstants) == 32);
 static_assert(sizeof(gpu::FieldViewConstants) == 64);
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool uses_shadow_field(DirectMode mode) {
+  return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
 }
 
 }  // namespace
@@ -35,6 +40,14 @@ Status validate(const FrameSettings& s) {
   if (s.field_updates > 64) {
     return invalid_argument("field updates per frame must be in [0, 64] (got " +
                             std::to_string(s.field_updates) + ")");
+  }
+  if (s.shadow_field_updates > 64) {
+    return invalid_argument("shadow field updates per frame must be in [0, 64] (got " +
+                            std::to_string(s.shadow_field_updates) + ")");
+  }
+  if (s.light_samples < 1 || s.light_samples > 64) {
+    return invalid_argument("light samples per pixel must be in [1, 64] (got " +
+                            std::to_string(s.light_samples) + ")");
   }
   if (!(s.exposure > 0.0f) || !(s.exposure <= 1e9f)) {
     return invalid_argument("exposure must be in (0, 1e9] (got " + std::to_string(s.exposure) +
@@ -70,10 +83,10 @@ CameraBasis camera_basis(const Camera& camera, uint32_t width, uint32_t height) 
 }
 
 Result<std::unique_ptr<Renderer>> Renderer::create(vk::Context& context, GpuScene& scene,
-                                                   IrradianceField* field,
-                                                   vk::TraceBackend backend) {
+                                                   IrradianceField* field, vk::TraceBackend backend,
+                                                   ShadowField* shadow_field) {
   DDGI_TRY(context.check_backend(backend));
-  std::unique_ptr<Renderer> renderer(new Renderer(context, scene, field));
+  std::unique_ptr<Renderer> renderer(new Renderer(context, scene, field, shadow_field));
   renderer->backend_ = backend;
   DDGI_TRY(renderer->create_kernels());
   DDGI_ASSIGN_OR_RETURN(renderer->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
@@ -94,6 +107,16 @@ Status Renderer::create_kernels() {
   DDGI_ASSIGN_OR_RETURN(
       direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
                                   backend_));
+  if (shadow_field_) {
+    DDGI_ASSIGN_OR_RETURN(direct_shadow_field_,
+                          vk::Kernel::create(context_,
+                                             {"direct_shadow_field",
+                                              true,
+                                              {scene_.layout(), frame_layout_.handle(),
+                                               shadow_field_->sampling_layout()},
+                                              sizeof(gpu::DirectConstants)},
+                                             backend_));
+  }
   if (field_) {
     const std::vector<VkDescriptorSetLayout> with_field = {scene_.layout(), frame_layout_.handle(),
                                                            field_->sampling_layout()};
@@ -154,6 +177,11 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   if (field_view && !field_) {
     return failed_precondition("the probes and atlas views need an irradiance field (GI is off)");
   }
+  const bool shadow_mode = uses_shadow_field(settings.direct_mode);
+  if (shadow_mode && !shadow_field_) {
+    return failed_precondition(std::string("the ") + direct_mode_name(settings.direct_mode) +
+                               " direct mode needs a shadow field (none was created)");
+  }
   DDGI_TRY(resize(settings.width, settings.height));
   const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
 
@@ -166,9 +194,15 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   primary.height = settings.height;
   primary.tmin = settings.camera.znear;
   primary.tmax = 1e30f;
-  const gpu::DirectConstants direct{settings.width, settings.height,
-                                    static_cast<uint32_t>(settings.direct_mode),
-                                    static_cast<uint32_t>(settings.view)};
+  gpu::DirectConstants direct{};
+  direct.width = settings.width;
+  direct.height = settings.height;
+  direct.mode = static_cast<uint32_t>(settings.direct_mode);
+  direct.view = static_cast<uint32_t>(settings.view);
+  direct.camera_position = basis.position;
+  direct.light_samples = settings.light_samples;
+  // Without an irradiance field nothing else brings the sky: the AO mode adds it.
+  direct.flags = field_ ? 0u : gpu::kDirectAddSky;
   const gpu::TonemapConstants tonemap{settings.width, settings.height,
                                       static_cast<uint32_t>(settings.tonemap), settings.exposure};
   gpu::IndirectConstants indirect{};
@@ -205,8 +239,19 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
     primary_.dispatch(cmd, frame_sets, &primary, size);
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
+    if (shadow_mode) {
+      for (uint32_t i = 0; i < settings.shadow_field_updates; ++i) {
+        shadow_field_->record_update(cmd, timer_, settings.direct_mode);
+      }
+    }
     timer_.begin_pass(cmd, "direct");
-    direct_.dispatch(cmd, frame_sets, &direct, size);
+    if (shadow_mode) {
+      const VkDescriptorSet shadow_sets[] = {scene_.descriptor_set(), frame_set_,
+                                             shadow_field_->sampling_set()};
+      direct_shadow_field_.dispatch(cmd, shadow_sets, &direct, size);
+    } else {
+      direct_.dispatch(cmd, frame_sets, &direct, size);
+    }
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
     if (field_) {

@@ -8,6 +8,7 @@
 
 #include "core/result.h"
 #include "gi/irradiance_field.h"
+#include "gi/shadow_field.h"
 #include "render/frame_types.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
@@ -34,6 +35,12 @@ struct FrameSettings {
   // Irradiance-field updates recorded before this frame's passes, in [0, 64]. 1: one update
   // per frame, the real-time loop.
   uint32_t field_updates = 1;
+  // Shadow-field updates recorded before this frame's passes when the direct mode uses the
+  // shadow field, in [0, 64]. 1: the real-time loop.
+  uint32_t shadow_field_updates = 1;
+  // Shadow rays per spherical light (radius > 0) and pixel in the shadow-rays mode, [1, 64].
+  // 1: the real-time default, noisy penumbrae; more give smooth soft shadows.
+  uint32_t light_samples = 1;
 };
 Status validate(const FrameSettings& settings);
 
@@ -50,26 +57,30 @@ class Renderer {
  public:
   // `backend`: the tracing backend of every kernel (must be supported by the device).
   // `field`: the irradiance field that gives indirect light; nullptr renders direct light only.
+  // `shadow_field`: what the shadow-field and AO direct modes sample; nullptr refuses them.
   static Result<std::unique_ptr<Renderer>> create(vk::Context& context, GpuScene& scene,
-                                                  IrradianceField* field, vk::TraceBackend backend);
+                                                  IrradianceField* field, vk::TraceBackend backend,
+                                                  ShadowField* shadow_field = nullptr);
 
   Result<FrameResult> render(const FrameSettings& settings);
   vk::TraceBackend backend() const { return backend_; }
 
  private:
-  Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field)
-      : context_(context), scene_(scene), field_(field) {}
+  Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field, ShadowField* shadow_field)
+      : context_(context), scene_(scene), field_(field), shadow_field_(shadow_field) {}
   Status create_kernels();
   Status resize(uint32_t width, uint32_t height);
 
   vk::Context& context_;
   GpuScene& scene_;
   IrradianceField* field_ = nullptr;
+  ShadowField* shadow_field_ = nullptr;
   vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
   vk::DescriptorLayout frame_layout_;
   VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
   vk::Kernel primary_;
   vk::Kernel direct_;
+  vk::Kernel direct_shadow_field_;  // the direct pass with the shadow field bound as set 2
   vk::Kernel indirect_;
   vk::Kernel field_views_;
   vk::Kernel tonemap_;

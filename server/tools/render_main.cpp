@@ -9,6 +9,7 @@
 #include "encode/write_image.h"
 #include "gi/field_param_table.h"
 #include "gi/irradiance_field.h"
+#include "gi/shadow_params_table.h"
 #include "render/camera_fit.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
@@ -30,7 +31,11 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
                                                           [the scene's camera, or a fitted one]
   --backend B           auto | query | pipeline                         [auto]
   --view V              full | direct | indirect | albedo | normal | probes | atlas  [full]
-  --direct M            shadow-rays | unshadowed                        [shadow-rays]
+  --direct M            shadow-rays | unshadowed | shadow-field | ao    [shadow-rays]
+                        (docs/shadow-field.md)
+  --light-samples N     shadow rays per spherical light and pixel, 1..64 [1]
+  --shadow-field NAME=VALUE  set a shadow-field parameter (repeatable); --shadow-field help
+                        lists them [grid of about 512 probes fitted to the scene's bounds]
   --tonemap T           aces | reinhard | clamp                         [aces]
   --exposure X          linear multiplier before tone mapping           [1]
   --jpeg-quality Q      1..100                                          [90]
@@ -65,11 +70,13 @@ double median(std::vector<double> values) {
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
       Flags flags,
-      Flags::parse(argc, argv,
-                   {"out", "width", "height", "camera", "backend", "view", "direct", "tonemap",
-                    "exposure", "jpeg-quality", "frames", "device", "log-level", "gi", "warmup",
-                    "field", "reference", "max-bounces", "seed"},
-                   {"validation", "help"}));
+      Flags::parse(
+          argc, argv,
+          {"out",       "width",        "height",       "camera",       "backend",   "view",
+           "direct",    "tonemap",      "exposure",     "jpeg-quality", "frames",    "device",
+           "log-level", "gi",           "warmup",       "field",        "reference", "max-bounces",
+           "seed",      "shadow-field", "light-samples"},
+          {"validation", "help"}));
   if (flags.has("help")) {
     std::fputs(kUsage, stdout);
     return ok_status();
@@ -114,6 +121,15 @@ Status run(int argc, char** argv) {
   }
   DDGI_ASSIGN_OR_RETURN(const std::string direct, flags.get_string("direct", "shadow-rays"));
   DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
+  DDGI_ASSIGN_OR_RETURN(const int64_t light_samples, flags.get_int("light-samples", 1, 1, 64));
+  settings.light_samples = static_cast<uint32_t>(light_samples);
+  const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
+  if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
+    for (const ShadowParamInfo& info : shadow_param_infos()) {
+      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
+    }
+    return ok_status();
+  }
   DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
   DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
   DDGI_ASSIGN_OR_RETURN(const std::vector<double> camera_values, flags.get_doubles("camera", 6, 7));
@@ -133,6 +149,8 @@ Status run(int argc, char** argv) {
   for (const std::string& warning : scene.warnings) LOG_WARNING << scene_path << ": " << warning;
   IrradianceFieldParams field_params = default_field_params(scene);
   DDGI_TRY(apply_field_assignments(field_params, field_assignments));
+  ShadowFieldParams shadow_params = fit_shadow_grid(scene.world_bounds());
+  DDGI_TRY(apply_shadow_assignments(shadow_params, shadow_assignments));
   settings.camera = default_camera(scene);
   if (!camera_values.empty()) {
     DDGI_ASSIGN_OR_RETURN(settings.camera, camera_from_values(camera_values, settings.camera));
@@ -160,8 +178,23 @@ Status run(int argc, char** argv) {
     DDGI_ASSIGN_OR_RETURN(field, IrradianceField::create(*context, *gpu_scene, field_params,
                                                          context->default_backend()));
   }
-  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(*context, *gpu_scene, field.get(),
-                                                        context->default_backend()));
+  std::unique_ptr<ShadowField> shadow_field;
+  const bool shadow_mode = settings.direct_mode == DirectMode::kShadowField ||
+                           settings.direct_mode == DirectMode::kAmbientOcclusion;
+  if (shadow_mode) {
+    DDGI_ASSIGN_OR_RETURN(shadow_field, ShadowField::create(*context, *gpu_scene, shadow_params,
+                                                            context->default_backend()));
+    const ShadowFieldParams& p = shadow_field->params();
+    LOG_INFO << "shadow field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
+             << " probes, " << p.rays_per_probe << " rays each, " << p.texels << "^2 texels, "
+             << shadow_field->kept_lights() << " of " << scene.lights.size() << " lights kept, "
+             << shadow_field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
+    const auto warm = shadow_field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
+    if (!warm.ok()) return warm.error();
+  }
+  DDGI_ASSIGN_OR_RETURN(
+      auto renderer, Renderer::create(*context, *gpu_scene, field.get(), context->default_backend(),
+                                      shadow_field.get()));
   LOG_INFO << "scene " << scene_path << ": " << gpu_scene->triangle_count() << " triangles, "
            << scene.lights.size() << " lights, " << gpu_scene->gpu_bytes() / (1 << 20)
            << " MiB on the GPU";
@@ -204,11 +237,12 @@ Status run(int argc, char** argv) {
   std::printf("%s: %ux%u, backend %s, device %s\n", out_path.c_str(), frame.width, frame.height,
               vk::backend_name(renderer->backend()), context->caps().device_name.c_str());
   std::printf("%-18s %12s\n", "pass", frames > 1 ? "median ms" : "ms");
-  double total = 0.0, field_ms = 0.0;
+  double total = 0.0, field_ms = 0.0, shadow_ms = 0.0;
   for (size_t p = 0; p < frame.pass_times.size(); ++p) {
     const double ms = median(pass_ms[p]);
     total += ms;
     if (p < 5 && field) field_ms += ms;
+    if (frame.pass_times[p].name.rfind("shadow ", 0) == 0) shadow_ms += ms;
     std::printf("%-18s %12.3f\n", frame.pass_times[p].name.c_str(), ms);
   }
   std::printf("%-18s %12.3f\n", "total", total);
@@ -216,6 +250,11 @@ Status run(int argc, char** argv) {
     std::printf("field update: %.3f ms, %llu rays, %.1f Mrays/s\n", field_ms,
                 static_cast<unsigned long long>(field->rays_per_update()),
                 double(field->rays_per_update()) / (field_ms * 1e3));
+  }
+  if (shadow_field && shadow_ms > 0.0) {
+    const uint64_t rays = shadow_field->rays_per_update(settings.direct_mode);
+    std::printf("shadow field update: %.3f ms, %llu rays, %.1f Mrays/s\n", shadow_ms,
+                static_cast<unsigned long long>(rays), double(rays) / (shadow_ms * 1e3));
   }
   if (context->validation_message_count() > 0) {
     return internal_error(std::to_string(context->validation_message_count()) +

@@ -38,9 +38,19 @@ LightSample sample_light(GpuLight light, vec3 p, vec2 jitter) {
     target += r * (cos(phi) * t + sin(phi) * b);
   }
   const vec3 to_light = target - p;
-  const float d2 = max(dot(to_light, to_light), 1e-30);
-  s.distance = sqrt(d2);
-  s.direction = to_light / s.distance;
+  float d2 = max(dot(to_light, to_light), 1e-30);
+  const float largest = max(abs(to_light.x), max(abs(to_light.y), abs(to_light.z)));
+  if (largest > 1e18) {
+    // The squared distance leaves float range (to_light / inf would be a zero direction):
+    // measure a scaled copy so a very distant light keeps its direction and distance.
+    const vec3 scaled = to_light / largest;
+    s.distance = length(scaled) * largest;
+    d2 = s.distance * s.distance;
+    s.direction = normalize(scaled);
+  } else {
+    s.distance = sqrt(d2);
+    s.direction = to_light / s.distance;
+  }
   // An inverse-square law that stays finite when the point touches the light.
   const float falloff = range_window(s.distance, light.range) /
                         max(d2, light.radius * light.radius + 1e-12);

@@ -3,7 +3,7 @@
 // Field update, pass 2: the radiance each blended ray carries back to its probe: emission,
 // direct light at the hit, and the previous field's irradiance times albedo (multiple
 // bounces). Back faces carry nothing (2021 paper, sec. 4.1); misses carry the environment.
-#include "common/lights.glsl"
+#include "gi/shadow_direct.glsl"
 #include "common/field_update.glsl"
 #include "shared/frame_data.h"
 
@@ -30,7 +30,8 @@ void main() {
     s.emission = ray.emission;
     s.front_face = true;
     Rng rng = rng_seed(index, field.update_index, 0x5bd1e995u);
-    const vec3 direct = direct_lighting(s, field.direct_mode == kDirectTracedShadows, rng);
+    // No shadow field is bound here: its modes shade probe-ray hits with traced shadow rays.
+    const vec3 direct = direct_light(s, field.direct_mode, 1u, -direction, false, rng);
     const vec3 indirect = s.albedo * field.energy_conservation *
                           sample_irradiance(s.position, s.normal, -direction);
     radiance = s.emission + direct + indirect;

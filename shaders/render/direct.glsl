@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Direct light at each primary hit: punctual lights with traced shadow rays (or none), plus
-// what the surface emits. Writes linear HDR radiance.
-#include "common/lights.glsl"
+// Direct light at each primary hit: punctual lights under the frame's DirectMode (traced shadow
+// rays, the shadow field, none), plus what the surface emits. Writes linear HDR radiance.
+// Compiled a second time as direct_shadow_field with DDGI_SHADOW_FIELD_SET=2 (the shadow field).
+#include "gi/shadow_direct.glsl"
 #include "common/gbuffer.glsl"
 
 layout(push_constant, scalar) uniform Push { DirectConstants pc; };
@@ -28,7 +29,9 @@ void main() {
     s.albedo = unpack_albedo(texel.albedo_flags);
     s.front_face = (flags & kGBufferFrontFace) != 0u;
     Rng rng = rng_seed(pixel.x, pixel.y, 0x9e3779b9u);
-    const vec3 direct = direct_lighting(s, pc.mode == kDirectTracedShadows, rng);
+    const vec3 to_camera = safe_normalize(pc.camera_position - s.position, s.normal);
+    const vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,
+                                     (pc.flags & kDirectAddSky) != 0u, rng);
     if (pc.view == kViewAlbedo) {
       result = s.albedo;
     } else if (pc.view == kViewNormal) {

@@ -32,6 +32,11 @@ DDGI_CONST uint kTonemapAces = 2u;
 // Ways the direct pass evaluates light (DirectConstants::mode).
 DDGI_CONST uint kDirectTracedShadows = 0u;
 DDGI_CONST uint kDirectUnshadowed = 1u;
+DDGI_CONST uint kDirectShadowField = 2u;       // visibility reconstructed from the shadow field
+DDGI_CONST uint kDirectAmbientOcclusion = 3u;  // shadow field + the sky through its AO
+
+// DirectConstants::flags
+DDGI_CONST uint kDirectAddSky = 1u;  // AO mode: add the sky term (no irradiance field brings it)
 
 // What the final image shows (DirectConstants::view).
 DDGI_CONST uint kViewFull = 0u;
@@ -58,6 +63,12 @@ struct DirectConstants {
   uint height;
   uint mode;
   uint view;
+  vec3 camera_position;
+  uint light_samples;  // shadow rays per spherical light in the traced mode
+  uint flags;          // kDirect* flags
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct IndirectConstants {
