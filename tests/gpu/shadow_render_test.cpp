@@ -1,0 +1,166 @@
+// The direct-light modes in frames (docs/shadow-field.md): the shadow-field mode approximates
+// shadow rays, the AO mode adds the sky only without an irradiance field, soft shadows sharpen
+// with more samples, the modes refuse to run without a shadow field, both backends agree.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "render/renderer.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/gpu/shadow_test_support.h"
+
+namespace ddgi::test {
+namespace {
+
+// Mean |a - b| over the RGB of two linear frames, relative to b's mean.
+float relative_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    if (i % 4 == 3) continue;
+    diff += std::abs(a[i] - b[i]);
+    sum += std::abs(b[i]);
+  }
+  return sum > 0.0 ? static_cast<float>(diff / sum) : 0.0f;
+}
+
+class ShadowRenderTest : public GpuTest {
+ protected:
+  struct Setup {
+    Scene scene;
+    std::unique_ptr<GpuScene> gpu;
+    std::unique_ptr<IrradianceField> field;
+    std::unique_ptr<ShadowField> shadow;
+    std::unique_ptr<Renderer> renderer;
+  };
+  Setup make(Scene scene, bool with_shadow_field, bool with_gi,
+             vk::TraceBackend backend = vk::TraceBackend::kRayQuery) {
+    Setup s;
+    s.scene = std::move(scene);
+    auto gpu = GpuScene::create(context(), s.scene);
+    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
+    if (!gpu.ok()) return s;
+    s.gpu = std::move(gpu).value();
+    if (with_gi) {
+      IrradianceFieldParams params = fit_grid_to_bounds(s.scene.world_bounds(), 64);
+      params.rays_per_probe = 64;
+      auto field = IrradianceField::create(context(), *s.gpu, params, backend);
+      EXPECT_TRUE(field.ok()) << field.error().message;
+      if (field.ok()) s.field = std::move(field).value();
+    }
+    if (with_shadow_field) {
+      auto shadow = ShadowField::create(context(), *s.gpu, box_on_floor_grid(), backend);
+      EXPECT_TRUE(shadow.ok()) << shadow.error().message;
+      if (shadow.ok()) s.shadow = std::move(shadow).value();
+    }
+    auto renderer = Renderer::create(context(), *s.gpu, s.field.get(), backend, s.shadow.get());
+    EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+    if (renderer.ok()) s.renderer = std::move(renderer).value();
+    return s;
+  }
+
+  std::vector<float> render(Setup& s, DirectMode mode, uint32_t light_samples = 1,
+                            uint32_t shadow_updates = 16) {
+    FrameSettings settings;
+    settings.width = 96;
+    settings.height = 72;
+    settings.camera = s.scene.cameras.at(0);
+    settings.view = View::kDirect;
+    settings.direct_mode = mode;
+    settings.light_samples = light_samples;
+    settings.shadow_field_updates = shadow_updates;
+    settings.field_updates = 0;
+    auto frame = s.renderer->render(settings);
+    EXPECT_TRUE(frame.ok()) << frame.error().message;
+    return frame.ok() ? frame->radiance : std::vector<float>{};
+  }
+};
+
+// The shadow-field frame is close to the shadow-rays frame; the unshadowed one is not (so the
+// metric sees shadows at all). Measured: 0.026 vs 0.105 relative mean difference.
+TEST_F(ShadowRenderTest, ShadowFieldModeApproximatesShadowRays) {
+  Setup s = make(load_repo_scene("box_on_floor.gltf"), true, false);
+  ASSERT_TRUE(s.renderer);
+  const auto traced = render(s, DirectMode::kTracedShadows);
+  const auto field = render(s, DirectMode::kShadowField);
+  const auto unshadowed = render(s, DirectMode::kUnshadowed);
+  const float field_error = relative_difference(field, traced);
+  const float unshadowed_error = relative_difference(unshadowed, traced);
+  std::printf("direct frame vs shadow rays: shadow field %.4f, unshadowed %.4f\n", field_error,
+              unshadowed_error);
+  EXPECT_LT(field_error, 0.1f);
+  EXPECT_GT(unshadowed_error, 3.0f * field_error);
+}
+
+TEST_F(ShadowRenderTest, ShadowModesNeedAShadowField) {
+  Setup s = make(load_repo_scene("box_on_floor.gltf"), false, false);
+  ASSERT_TRUE(s.renderer);
+  for (DirectMode mode : {DirectMode::kShadowField, DirectMode::kAmbientOcclusion}) {
+    FrameSettings settings;
+    settings.width = 8;
+    settings.height = 8;
+    settings.direct_mode = mode;
+    auto frame = s.renderer->render(settings);
+    ASSERT_FALSE(frame.ok());
+    EXPECT_EQ(frame.error().code, ErrorCode::kFailedPrecondition);
+    EXPECT_NE(frame.error().message.find("shadow field"), std::string::npos);
+  }
+}
+
+// A spherical light's penumbra from one shadow ray per pixel is noise; 16 rays come much closer
+// to a 64-ray image.
+TEST_F(ShadowRenderTest, MoreLightSamplesSmoothSoftShadows) {
+  Scene scene = load_repo_scene("box_on_floor.gltf");
+  scene.lights[0].radius = 0.4f;
+  Setup s = make(std::move(scene), false, false);
+  ASSERT_TRUE(s.renderer);
+  const auto one = render(s, DirectMode::kTracedShadows, 1);
+  const auto sixteen = render(s, DirectMode::kTracedShadows, 16);
+  const auto reference = render(s, DirectMode::kTracedShadows, 64);
+  const float e1 = relative_difference(one, reference);
+  const float e16 = relative_difference(sixteen, reference);
+  std::printf("soft shadows vs 64 samples: 1 sample %.4f, 16 samples %.4f\n", e1, e16);
+  EXPECT_LT(e16, 0.5f * e1);
+}
+
+// Sky light through AO: with a white sky, no lights and GI off, the floor far from the cube
+// reflects about its albedo (0.8) and darkens at the cube's foot; with an irradiance field the
+// sky arrives through the field instead, and the AO mode adds nothing (no double counting).
+TEST_F(ShadowRenderTest, AoModeAddsTheSkyOnlyWithoutGi) {
+  Scene scene = load_repo_scene("box_on_floor.gltf");
+  scene.lights.clear();
+  scene.environment.color = glm::vec3(1.0f);
+  for (bool gi : {false, true}) {
+    Setup s = make(scene, true, gi);
+    ASSERT_TRUE(s.renderer);
+    ASSERT_TRUE(s.shadow->update(16, DirectMode::kAmbientOcclusion).ok());
+    auto answers = s.shadow->query(box_floor_points(-3.0f, 3.0f, -3.0f, 3.0f, 0.5f));
+    ASSERT_TRUE(answers.ok());
+    const auto frame = render(s, DirectMode::kAmbientOcclusion, 1, 1);
+    ASSERT_FALSE(frame.empty());
+    // The centre pixel lies on the floor inside the (would-be) shadow region, next to the cube.
+    const size_t centre = (size_t(36) * 96 + 48) * 4;
+    std::printf("AO mode, GI %s: centre pixel %.4f\n", gi ? "on" : "off", frame[centre]);
+    if (gi) {
+      EXPECT_EQ(frame[centre], 0.0f);
+    } else {
+      EXPECT_GT(frame[centre], 0.3f);
+      EXPECT_LT(frame[centre], 0.8f);
+    }
+  }
+}
+
+// The direct pass with the shadow field bound runs the same on both backends.
+TEST_F(ShadowRenderTest, BackendsAgreeInShadowFieldMode) {
+  std::vector<float> frames[2];
+  for (int b = 0; b < 2; ++b) {
+    Setup s = make(load_repo_scene("box_on_floor.gltf"), true, false,
+                   b == 0 ? vk::TraceBackend::kRayQuery : vk::TraceBackend::kPipeline);
+    ASSERT_TRUE(s.renderer);
+    frames[b] = render(s, DirectMode::kShadowField, 1, 4);
+  }
+  EXPECT_LT(relative_difference(frames[1], frames[0]), 1e-5f);
+}
+
+}  // namespace
+}  // namespace ddgi::test
