@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Streaming benchmark of the render service on a GPU host, client on the same host: frames per
+# second streamed at 1280x720 and 1920x1080, and the latency from a camera command to the first
+# frame that shows it (ddgi-client stream --camera-moves). Results: docs/results/service-bench.md.
+#
+#   deploy/service-bench.sh bundle        # here: Release ddgi-server + ddgi-client-lean, their
+#                                         # SPIR-V and non-glibc libraries, the real scenes used,
+#                                         # into build-svc-carry/ (ignored by git, carried)
+#   deploy/service-bench.sh run OUT_DIR   # on the GPU host (with the Vulkan loader in .gl/)
+#
+# Environment for `run`: SCENES (default "cornell_box modern_hall living_room"), SIZES (default
+# "1280x720 1920x1080"), SECONDS_PER_RUN (10), ENCODE_THREADS (8), WARMUP (32).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+carry=build-svc-carry
+
+bundle() {
+  cmake -S . -B build-svc-rel -G Ninja -DCMAKE_BUILD_TYPE=Release -DDDGI_BUILD_TESTS=OFF \
+    -DDDGI_BUILD_CLIENT=ON >/dev/null
+  ninja -C build-svc-rel -j "${JOBS:-2}" ddgi-server ddgi-client-lean
+  rm -rf "$carry" && mkdir -p "$carry/bin" "$carry/lib" "$carry/scenes"
+  cp build-svc-rel/ddgi-server build-svc-rel/ddgi-client-lean "$carry/bin/"
+  strip "$carry/bin/"ddgi-*
+  cp -r build-svc-rel/spirv "$carry/bin/spirv" && rm -f "$carry/bin/spirv/"*.d
+  for bin in "$carry/bin/"ddgi-*; do ldd "$bin" | awk '/=> \//{print $3}'; done | sort -u |
+    grep -vE '/(libc|libm|libpthread|libdl|librt|ld-linux-x86-64|libresolv)\.so' |
+    while read -r lib; do cp -L "$lib" "$carry/lib/"; done
+  cp -r ../shared/scenes/ModernHall ../shared/scenes/LivingRoom "$carry/scenes/"
+  du -sh "$carry"
+}
+
+run() {
+  local out=$1
+  mkdir -p "$out"
+  for f in .gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+  if [ -f /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json ]; then
+    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  fi
+  if [ ! -e ../shared/scenes ]; then mkdir -p ../shared && ln -s "$PWD/$carry/scenes" ../shared/scenes; fi
+  export LD_LIBRARY_PATH="$PWD/$carry/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  local bin="$PWD/$carry/bin"
+  "$bin/ddgi-server" --listen 127.0.0.1:0 --port-file "$out/port" --metrics-port -1 \
+    --max-fps 1000 --encode-threads "${ENCODE_THREADS:-8}" --scene-root scenes \
+    >"$out/server.log" 2>&1 &
+  local server=$!
+  for _ in $(seq 1 600); do [ -s "$out/port" ] && break; sleep 0.1; done
+  local client=("$bin/ddgi-client-lean" --server "127.0.0.1:$(cat "$out/port")" --deadline 600)
+  "${client[@]}" info >"$out/info.json"
+  for scene in ${SCENES:-cornell_box modern_hall living_room}; do
+    "${client[@]}" load "$scene" --warmup "${WARMUP:-32}" >"$out/$scene.session.json"
+    local session
+    session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/$scene.session.json" | head -n 1)
+    for size in ${SIZES:-1280x720 1920x1080}; do
+      "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
+        --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
+        --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
+        --out "$out/$scene.$size.jpg" >"$out/$scene.$size.json"
+      echo "$scene $size: $(tr -d '\n ' <"$out/$scene.$size.json")"
+    done
+    "${client[@]}" close --session "$session" >/dev/null
+  done
+  kill -TERM "$server"
+  wait "$server"
+}
+
+case "${1:-}" in
+  bundle) bundle ;;
+  run) run "${2:?usage: deploy/service-bench.sh run OUT_DIR}" ;;
+  *) echo "usage: deploy/service-bench.sh bundle | run OUT_DIR" >&2; exit 2 ;;
+esac
