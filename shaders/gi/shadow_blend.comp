@@ -53,16 +53,24 @@ void main() {
 
   const float hysteresis = (shadow.flags & kShadowResetHistory) != 0u ? 0.0 : shadow.hysteresis;
   const uint groups = (shadow.light_count + kShadowLightsPerGroup - 1u) / kShadowLightsPerGroup;
-  if (visibility_weight > 0.0) {
-    for (uint g = 0u; g < groups; ++g) {
-      const ivec2 coord = shadow_map_origin(probe, g) + ivec2(ij);
-      const vec4 fresh = visibility[g] / visibility_weight;
-      imageStore(visibility_out, coord, mix(fresh, imageLoad(visibility_out, coord), hysteresis));
-    }
-  }
   const ivec2 coord = shadow_map_origin(probe, 0u) + ivec2(ij);
-  vec4 old = imageLoad(moments_out, coord);
+  const vec4 old = imageLoad(moments_out, coord);
   vec4 blended = old;
+  // Visibility is a weighted exponential moving average: the texel keeps its history's weight
+  // (moments.w) so that rays far from its direction, with tiny weights, change it little, while
+  // a ray right on it counts fully. Normalising each update on its own would let the nearest
+  // ray, however far, set the value, blurring the map over the spacing between rays.
+  const float history = hysteresis * old.w;
+  const float total = history + visibility_weight;
+  if (total > 0.0 && visibility_weight > 0.0) {
+    for (uint g = 0u; g < groups; ++g) {
+      const ivec2 c = shadow_map_origin(probe, g) + ivec2(ij);
+      imageStore(visibility_out, c, (history * imageLoad(visibility_out, c) + visibility[g]) / total);
+    }
+    blended.w = total;
+  } else {
+    blended.w = history;
+  }
   if (distance_weight > 0.0) blended.xy = mix(moments / distance_weight, old.xy, hysteresis);
   if (visibility_weight > 0.0 && (shadow.flags & kShadowTraceAo) != 0u) {
     const bool fresh_ao = (shadow.flags & kShadowResetAo) != 0u;

@@ -28,7 +28,7 @@ DDGI_CONST uint kShadowMaxAtlasDimension = 16384u;  // guaranteed by every Vulka
 DDGI_CONST uint kShadowBindingConstants = 0;   // ShadowFieldConstants (one)
 DDGI_CONST uint kShadowBindingVisibility = 1;  // sampler2D RGBA32F: light visibility, 4 per group
 DDGI_CONST uint kShadowBindingMoments = 2;     // sampler2D RGBA32F: mean distance, mean squared
-                                               // distance, ambient occlusion, unused
+                                               // distance, ambient occlusion, visibility weight
 
 // Set 1 of the field's update kernels.
 DDGI_CONST uint kShadowUpdateSet = 1;

@@ -1,0 +1,409 @@
+// ddgi-shadow-eval: the direct-lighting modes (shadow rays, the shadow field at several
+// resolutions, unshadowed) against the path-traced reference, with GPU time, and the shadow
+// field's per-pass times. Everything is printed as markdown in one run (docs/shadow-field.md).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/flags.h"
+#include "core/log.h"
+#include "encode/write_image.h"
+#include "gi/irradiance_field.h"
+#include "gi/shadow_field.h"
+#include "gi/shadow_params_table.h"
+#include "metrics/flip.h"
+#include "metrics/pixel_error.h"
+#include "metrics/ssim.h"
+#include "render/camera_fit.h"
+#include "render/gpu_scene.h"
+#include "render/path_tracer.h"
+#include "render/renderer.h"
+#include "scene/gltf_loader.h"
+#include "tools/shadow_plot.h"
+#include "vk/context.h"
+
+namespace ddgi {
+namespace {
+
+constexpr const char* kUsage = R"(usage: ddgi-shadow-eval SCENE... [flags]
+
+Measures the direct-lighting modes against the path-traced reference. For each SCENE: path-trace
+the direct-only reference (emission seen + punctual lights, what the frame's direct view shows)
+and the full image with --spp samples; warm up an irradiance field for the full images; then for
+each mode (shadow-rays, unshadowed, shadow-field at every --resolutions entry, and the first
+resolution again with split updates) render the direct and the full view, score PSNR, SSIM and
+mean FLIP on the tone-mapped images (ACES, one exposure per scene: the reference's 95th-percentile
+luminance maps to 0.8), and take the
+median GPU ms over --frames frames of the direct light (direct pass + shadow-field update) and
+of the whole frame. Then the shadow field's per-pass times (the thesis's Table 7.8).
+
+  --width N --height N  image size                                     [480 x 270]
+  --spp N               reference samples per pixel                    [1024]
+  --warmup N            irradiance- and shadow-field updates before measuring [64]
+  --frames N            timed frames per mode                          [10]
+  --resolutions LIST    shadow fields as CELLS:TEXELS separated by ';': a grid of about CELLS
+                        cells fitted to the scene, TEXELS^2 maps       [64:8;512:16;4096:16]
+  --light-samples N     shadow rays per spherical light in the shadow-rays mode [1]
+  --shadow-field NAME=VALUE  any other shadow-field parameter, for every field (repeatable)
+  --gi on|off           irradiance field in the full images            [on]
+  --svg FILE            also write the plot: FLIP of the direct image vs its GPU ms
+  --out-dir DIR         also write every reference and frame as PNG there
+  --backend B           auto | query | pipeline                        [auto]
+)";
+
+struct Resolution {
+  uint32_t cells = 512;
+  uint32_t texels = 16;
+};
+
+Result<std::vector<Resolution>> parse_resolutions(const std::string& text) {
+  std::vector<Resolution> list;
+  std::stringstream entries(text);
+  std::string entry;
+  while (std::getline(entries, entry, ';')) {
+    if (entry.empty()) continue;
+    const size_t colon = entry.find(':');
+    if (colon == std::string::npos) {
+      return invalid_argument("--resolutions entry '" + entry + "' is not CELLS:TEXELS");
+    }
+    DDGI_ASSIGN_OR_RETURN(const int64_t cells, parse_int(entry.substr(0, colon), "--resolutions"));
+    DDGI_ASSIGN_OR_RETURN(const int64_t texels,
+                          parse_int(entry.substr(colon + 1), "--resolutions"));
+    if (cells < 1 || cells > 1'000'000 || texels < 4 || texels > 64) {
+      return invalid_argument("--resolutions entry '" + entry +
+                              "': CELLS must be in [1, 1000000], TEXELS in [4, 64]");
+    }
+    list.push_back({static_cast<uint32_t>(cells), static_cast<uint32_t>(texels)});
+  }
+  if (list.empty()) return invalid_argument("--resolutions names no shadow field");
+  return list;
+}
+
+// One row of the table: a direct mode, with the shadow field it samples (if any).
+struct ModeRun {
+  std::string name;
+  DirectMode mode = DirectMode::kTracedShadows;
+  bool has_shadow_field = false;
+  ShadowFieldParams shadow;
+};
+
+struct Scores {
+  double psnr = 0.0, ssim = 0.0, flip = 0.0;
+};
+
+// sRGB-encoded [0,1] floats from RGBA8, the form the metrics take.
+std::vector<float> to_unit_rgb(const std::vector<uint8_t>& rgba) {
+  std::vector<float> rgb;
+  rgb.reserve(rgba.size() / 4 * 3);
+  for (size_t i = 0; i < rgba.size(); i += 4) {
+    for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
+  }
+  return rgb;
+}
+
+Result<Scores> score(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& test,
+                     uint32_t width, uint32_t height) {
+  const std::vector<float> a = to_unit_rgb(reference), b = to_unit_rgb(test);
+  const metrics::RgbImageView va{width, height, a}, vb{width, height, b};
+  Scores s;
+  DDGI_ASSIGN_OR_RETURN(s.psnr, metrics::psnr(va, vb));
+  DDGI_ASSIGN_OR_RETURN(s.ssim, metrics::ssim(va, vb));
+  DDGI_ASSIGN_OR_RETURN(const metrics::FlipResult flip, metrics::flip(va, vb));
+  s.flip = flip.mean;
+  return s;
+}
+
+// Exposure that maps the reference's 95th-percentile luminance to 0.8. Not the log-average:
+// a black background or a black shadow would pull it down and expose everything else into
+// white, hiding what these modes differ in.
+float reference_exposure(const std::vector<float>& radiance) {
+  std::vector<float> luminance;
+  for (size_t i = 0; i + 2 < radiance.size(); i += 4) {
+    luminance.push_back(0.2126f * radiance[i] + 0.7152f * radiance[i + 1] +
+                        0.0722f * radiance[i + 2]);
+  }
+  if (luminance.empty()) return 1.0f;
+  const size_t k = luminance.size() * 95 / 100;
+  std::nth_element(luminance.begin(), luminance.begin() + k, luminance.end());
+  const float high = luminance[k];
+  return high > 0.0f ? std::clamp(0.8f / high, 1e-6f, 1e6f) : 1.0f;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+bool is_shadow_pass(const std::string& name) {
+  return name.rfind("shadow ", 0) == 0;
+}
+
+std::string file_stem(const std::string& path) {
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  return name.substr(0, name.find('.'));
+}
+
+Status write_png(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
+                 const std::vector<uint8_t>& rgba) {
+  if (dir.empty()) return ok_status();
+  return encode::write_image(dir + "/" + name + ".png", encode::ImageRgba8{width, height, rgba});
+}
+
+std::string fixed(double value, int digits) {
+  if (!std::isfinite(value)) return value > 0 ? "inf" : "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
+// Per-pass medians of one shadow field, for the Table 7.8 analogue.
+struct PassRow {
+  std::string scene;
+  std::string field;
+  uint64_t rays = 0;
+  std::map<std::string, double> ms;
+};
+
+struct Options {
+  uint32_t width = 480, height = 270, spp = 1024, warmup = 64, frames = 10, light_samples = 1;
+  bool gi = true;
+  std::string out_dir;
+  std::vector<Resolution> resolutions;
+  std::vector<std::string> shadow_assignments;
+};
+
+Status evaluate_scene(vk::Context& context, const std::string& scene_path, const Options& o,
+                      std::vector<PassRow>& pass_rows, ScatterPlot& plot) {
+  const vk::TraceBackend backend = context.default_backend();
+  DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
+  const std::string stem = file_stem(scene_path);
+
+  // References: the full image first, which sets the exposure of both.
+  PathTraceSettings pt;
+  pt.width = o.width;
+  pt.height = o.height;
+  pt.camera = default_camera(scene);
+  pt.jitter = false;  // frames trace pixel centres too
+  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu_scene, backend));
+  auto accumulate = [&](PathTraceView view) -> Status {
+    pt.view = view;
+    for (uint32_t done = 0; done < o.spp;) {
+      const uint32_t batch = std::min(64u, o.spp - done);
+      DDGI_TRY(tracer->accumulate(pt, batch));
+      done += batch;
+    }
+    return ok_status();
+  };
+  DDGI_TRY(accumulate(PathTraceView::kFull));
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
+  const float exposure = reference_exposure(linear.radiance);
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage full_reference,
+                        tracer->read(Tonemap::kAces, exposure));
+  DDGI_TRY(accumulate(PathTraceView::kPunctualDirect));
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage direct_reference,
+                        tracer->read(Tonemap::kAces, exposure));
+  tracer.reset();
+  DDGI_TRY(write_png(o.out_dir, stem + ".reference", o.width, o.height, full_reference.ldr));
+  DDGI_TRY(
+      write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, direct_reference.ldr));
+
+  std::unique_ptr<IrradianceField> field;
+  if (o.gi) {
+    DDGI_ASSIGN_OR_RETURN(
+        field, IrradianceField::create(context, *gpu_scene, default_field_params(scene), backend));
+    const auto warm = field->update(o.warmup, DirectMode::kTracedShadows);
+    if (!warm.ok()) return warm.error();
+  }
+
+  std::vector<ModeRun> runs = {{"shadow-rays", DirectMode::kTracedShadows, false, {}},
+                               {"unshadowed", DirectMode::kUnshadowed, false, {}}};
+  for (size_t r = 0; r < o.resolutions.size(); ++r) {
+    ShadowFieldParams p = fit_shadow_grid(scene.world_bounds(), o.resolutions[r].cells);
+    p.texels = o.resolutions[r].texels;
+    DDGI_TRY(apply_shadow_assignments(p, o.shadow_assignments));
+    runs.push_back({"shadow-field", DirectMode::kShadowField, true, p});
+    if (r == 0) {
+      p.split_update = true;
+      runs.push_back({"shadow-field split", DirectMode::kShadowField, true, p});
+    }
+  }
+
+  PlotSeries series{stem, {}};
+  for (const ModeRun& run : runs) {
+    std::unique_ptr<ShadowField> shadow;
+    std::string grid = "-";
+    if (run.has_shadow_field) {
+      DDGI_ASSIGN_OR_RETURN(shadow, ShadowField::create(context, *gpu_scene, run.shadow, backend));
+      const auto warm = shadow->update(o.warmup, run.mode);
+      if (!warm.ok()) return warm.error();
+      const glm::ivec3 c = run.shadow.counts;
+      grid = std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z) + ", " +
+             std::to_string(run.shadow.texels) + "^2";
+    }
+    DDGI_ASSIGN_OR_RETURN(
+        auto renderer, Renderer::create(context, *gpu_scene, field.get(), backend, shadow.get()));
+    FrameSettings settings;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.camera = pt.camera;
+    settings.exposure = exposure;
+    settings.direct_mode = run.mode;
+    settings.light_samples = o.light_samples;
+    std::vector<double> direct_ms, frame_ms;
+    std::map<std::string, std::vector<double>> shadow_passes;
+    FrameResult full, direct;
+    // One untimed frame first: drivers may compile pipelines at their first dispatch.
+    settings.view = View::kFull;
+    DDGI_TRY(renderer->render(settings));
+    for (uint32_t f = 0; f < o.frames; ++f) {
+      settings.view = View::kFull;
+      DDGI_ASSIGN_OR_RETURN(full, renderer->render(settings));
+      double direct_total = 0.0, frame_total = 0.0;
+      for (const vk::PassTime& t : full.pass_times) {
+        frame_total += t.milliseconds;
+        if (t.name == "direct" || is_shadow_pass(t.name)) direct_total += t.milliseconds;
+        if (is_shadow_pass(t.name)) shadow_passes[t.name].push_back(t.milliseconds);
+      }
+      direct_ms.push_back(direct_total);
+      frame_ms.push_back(frame_total);
+    }
+    settings.view = View::kDirect;
+    DDGI_ASSIGN_OR_RETURN(direct, renderer->render(settings));
+    DDGI_ASSIGN_OR_RETURN(const Scores d,
+                          score(direct_reference.ldr, direct.ldr, o.width, o.height));
+    DDGI_ASSIGN_OR_RETURN(const Scores f, score(full_reference.ldr, full.ldr, o.width, o.height));
+    std::string tag = run.name + (run.has_shadow_field ? "-" + std::to_string(run.shadow.counts.x) +
+                                                             "x" + std::to_string(run.shadow.texels)
+                                                       : "");
+    std::replace(tag.begin(), tag.end(), ' ', '-');
+    DDGI_TRY(write_png(o.out_dir, stem + "." + tag, o.width, o.height, full.ldr));
+    DDGI_TRY(write_png(o.out_dir, stem + "." + tag + "-direct", o.width, o.height, direct.ldr));
+
+    const double shadow_mib = shadow ? double(shadow->gpu_bytes()) / (1 << 20) : 0.0;
+    std::printf("| %s | %s | %s | %.1f | %s | %.4f | %.4f | %s | %.4f | %.4f | %.3f | %.3f |\n",
+                stem.c_str(), run.name.c_str(), grid.c_str(), shadow_mib, fixed(d.psnr, 2).c_str(),
+                d.ssim, d.flip, fixed(f.psnr, 2).c_str(), f.ssim, f.flip, median(direct_ms),
+                median(frame_ms));
+    std::fflush(stdout);
+
+    std::string label = run.name == "shadow-rays" ? "rays" : run.name == "unshadowed" ? "none" : "";
+    if (run.has_shadow_field) {
+      label = (run.shadow.split_update ? "split " : "") + std::to_string(run.shadow.counts.x) +
+              "x" + std::to_string(run.shadow.counts.y) + "x" +
+              std::to_string(run.shadow.counts.z) + "/" + std::to_string(run.shadow.texels);
+      PassRow row{stem,
+                  grid + (run.shadow.split_update ? ", split" : ""),
+                  shadow->rays_per_update(run.mode),
+                  {}};
+      for (auto& [name, values] : shadow_passes) row.ms[name] = median(values);
+      pass_rows.push_back(row);
+    }
+    series.points.push_back({median(direct_ms), d.flip, label});
+  }
+  plot.series.push_back(series);
+  return ok_status();
+}
+
+void print_pass_table(const std::vector<PassRow>& rows) {
+  std::printf(
+      "\nShadow-field update, median GPU ms per pass (split: one pass traces the previous "
+      "update's shadow rays and this update's probe rays)\n\n"
+      "| scene | field | rays/update | trace | shadow rays | trace+rays (split) | blend | "
+      "borders | total | Mrays/s |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const PassRow& r : rows) {
+    auto ms = [&](const char* name) {
+      const auto it = r.ms.find(name);
+      return it == r.ms.end() ? std::string("-") : fixed(it->second, 3);
+    };
+    double total = 0.0;
+    for (const auto& [name, value] : r.ms) total += value;
+    std::printf(
+        "| %s | %s | %llu | %s | %s | %s | %s | %s | %.3f | %.0f |\n", r.scene.c_str(),
+        r.field.c_str(), static_cast<unsigned long long>(r.rays), ms("shadow trace").c_str(),
+        ms("shadow rays").c_str(), ms("shadow trace+rays").c_str(), ms("shadow blend").c_str(),
+        ms("shadow borders").c_str(), total, total > 0.0 ? double(r.rays) / (total * 1e3) : 0.0);
+  }
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
+                                                  {"width", "height", "spp", "warmup", "frames",
+                                                   "resolutions", "light-samples", "shadow-field",
+                                                   "gi", "svg", "out-dir", "backend"},
+                                                  {"help"}));
+  if (flags.has("help") || flags.positional().empty()) {
+    std::fputs(kUsage, stdout);
+    return flags.has("help") ? ok_status() : invalid_argument("no scene given");
+  }
+  set_log_level(LogLevel::kWarning);
+  Options o;
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 480, 11, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 270, 11, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t spp, flags.get_int("spp", 1024, 1, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 64, 0, 100000));
+  DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 10, 1, 10000));
+  DDGI_ASSIGN_OR_RETURN(const int64_t samples, flags.get_int("light-samples", 1, 1, 64));
+  o.width = static_cast<uint32_t>(width);
+  o.height = static_cast<uint32_t>(height);
+  o.spp = static_cast<uint32_t>(spp);
+  o.warmup = static_cast<uint32_t>(warmup);
+  o.frames = static_cast<uint32_t>(frames);
+  o.light_samples = static_cast<uint32_t>(samples);
+  DDGI_ASSIGN_OR_RETURN(const std::string gi, flags.get_string("gi", "on"));
+  if (gi != "on" && gi != "off") return invalid_argument("--gi must be on or off");
+  o.gi = gi == "on";
+  DDGI_ASSIGN_OR_RETURN(const std::string resolutions,
+                        flags.get_string("resolutions", "64:8;512:16;4096:16"));
+  DDGI_ASSIGN_OR_RETURN(o.resolutions, parse_resolutions(resolutions));
+  o.shadow_assignments = flags.get_all("shadow-field");
+  DDGI_ASSIGN_OR_RETURN(o.out_dir, flags.get_string("out-dir", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string svg_path, flags.get_string("svg", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
+  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
+  // Fail on a bad assignment before any GPU work.
+  ShadowFieldParams check;
+  DDGI_TRY(apply_shadow_assignments(check, o.shadow_assignments));
+
+  vk::ContextOptions options;
+  options.backend = forced_backend;
+  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
+  std::printf(
+      "device: %s (%s), backend %s, %ux%u, reference %u spp, %u warm-up updates, %u frames, GI "
+      "%s\n\n",
+      context->caps().device_name.c_str(), context->caps().driver_name.c_str(),
+      vk::backend_name(context->default_backend()), o.width, o.height, o.spp, o.warmup, o.frames,
+      gi.c_str());
+  std::printf(
+      "| scene | mode | shadow field | MiB | direct: PSNR | SSIM | FLIP | full: PSNR | SSIM | FLIP "
+      "| direct ms | frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+
+  std::vector<PassRow> pass_rows;
+  ScatterPlot plot;
+  plot.title = "Direct light: error vs GPU time (" + context->caps().device_name + ")";
+  plot.x_label = "direct light GPU ms per frame (direct pass + shadow-field update), log scale";
+  plot.y_label = "mean FLIP of the direct image vs the path-traced reference";
+  for (const std::string& scene_path : flags.positional()) {
+    DDGI_TRY(evaluate_scene(*context, scene_path, o, pass_rows, plot));
+  }
+  print_pass_table(pass_rows);
+  if (!svg_path.empty()) DDGI_TRY(write_text_file(svg_path, scatter_plot_svg(plot)));
+  return ok_status();
+}
+
+}  // namespace
+}  // namespace ddgi
+
+int main(int argc, char** argv) {
+  const ddgi::Status status = ddgi::run(argc, argv);
+  if (!status.ok()) {
+    std::fprintf(stderr, "ddgi-shadow-eval: %s\n", status.error().message.c_str());
+    return 2;
+  }
+  return 0;
+}

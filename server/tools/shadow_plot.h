@@ -1,0 +1,37 @@
+// A scatter plot as a self-contained SVG file: what ddgi-shadow-eval draws error against GPU time
+// with (no plotting dependency; the SVG is plain text).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace ddgi {
+
+struct PlotPoint {
+  double x = 0.0;
+  double y = 0.0;
+  std::string label;  // drawn beside the point
+};
+
+struct PlotSeries {
+  std::string name;  // legend entry
+  std::vector<PlotPoint> points;
+};
+
+struct ScatterPlot {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  bool log_x = true;  // GPU times span orders of magnitude
+  std::vector<PlotSeries> series;
+};
+
+// The plot as SVG text. Points with non-finite or (on a log axis) non-positive coordinates are
+// left out.
+std::string scatter_plot_svg(const ScatterPlot& plot);
+
+Status write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace ddgi
