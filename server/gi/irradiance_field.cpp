@@ -48,9 +48,8 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.relocation_iterations != b.relocation_iterations ||
          a.classification != b.classification || a.probe_offset_limit != b.probe_offset_limit ||
          a.min_frontface_distance != b.min_frontface_distance ||
-         a.backface_threshold != b.backface_threshold ||
-         a.fixed_rays != b.fixed_rays || a.irradiance_texels != b.irradiance_texels ||
-         a.distance_texels != b.distance_texels;
+         a.backface_threshold != b.backface_threshold || a.fixed_rays != b.fixed_rays ||
+         a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels;
 }
 
 }  // namespace
@@ -156,10 +155,9 @@ Status IrradianceField::create_resources() {
                                            vk::MemoryUsage::kDeviceLocal, "probe states"));
   DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
                                                   vk::MemoryUsage::kDeviceLocal, "probe rays"));
-  DDGI_ASSIGN_OR_RETURN(probe_list_,
-                        vk::Buffer::create(context_, probes * sizeof(uint32_t),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                           vk::MemoryUsage::kUpload, "probe list"));
+  DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, probes * sizeof(uint32_t),
+                                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                        vk::MemoryUsage::kUpload, "probe list"));
   const VkImageUsageFlags image_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -228,9 +226,14 @@ void IrradianceField::record_linear(VkCommandBuffer cmd, const vk::Kernel& kerne
                                     uint32_t per_probe, uint32_t first_ray, uint32_t mode) {
   const uint64_t count = uint64_t(probes) * per_probe;
   const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
-  const gpu::FieldDispatch push{static_cast<uint32_t>(count), d.row_width, list_start,
-                                std::max(list_size, 1u),         per_probe,  first_ray,
-                                mode,                            0};
+  const gpu::FieldDispatch push{static_cast<uint32_t>(count),
+                                d.row_width,
+                                list_start,
+                                std::max(list_size, 1u),
+                                per_probe,
+                                first_ray,
+                                mode,
+                                0};
   const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
   kernel.dispatch(cmd, sets, &push, d.size);
   vk::barrier_all(cmd);
@@ -279,8 +282,8 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
     const bool is_active = state == gpu::kProbeVigilant || state == gpu::kProbeAwake;
     // A probe that starts being traced has no valid history (2021 paper: Newly Awake/Vigilant).
     if (is_active && !was_active) states[p].flags |= gpu::kProbeResetHistory;
-    const uint32_t flags = (states[p].flags & ~gpu::kProbeStateMask) |
-                           (state << gpu::kProbeStateShift);
+    const uint32_t flags =
+        (states[p].flags & ~gpu::kProbeStateMask) | (state << gpu::kProbeStateShift);
     relabelled = relabelled || flags != states[p].flags;
     states[p].flags = flags;
     verdicts[p] = static_cast<uint8_t>(state);
@@ -307,7 +310,8 @@ Status IrradianceField::prepare() {
     // Grow each region by a cell and the self-shadow bias (2021 paper, fig. 10): probes that
     // can be in the cage of a point on the moved object, before and after the move.
     const float min_spacing = std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
-    const glm::vec3 grow = params_.spacing + glm::vec3(0.75f * min_spacing * params_.self_shadow_bias);
+    const glm::vec3 grow =
+        params_.spacing + glm::vec3(0.75f * min_spacing * params_.self_shadow_bias);
     for (Bounds& r : regions) {
       r.min -= grow;
       r.max += grow;
@@ -369,7 +373,7 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.update_index = static_cast<uint32_t>(update_index_);
   c.irradiance_atlas_size = glm::vec2(layout_.irradiance_size);
   c.distance_atlas_size = glm::vec2(layout_.distance_size);
-  c.hysteresis = params_.hysteresis;
+  c.hysteresis = std::min(params_.hysteresis, hysteresis_cap_);
   c.distance_hysteresis = params_.distance_hysteresis;
   c.change_threshold = params_.change_threshold;
   c.new_distribution_threshold = params_.new_distribution_threshold;
@@ -384,9 +388,8 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.ray_rotation = random_rotation(params_.seed, update_index_);
   c.direct_mode = static_cast<uint32_t>(direct_mode);
   c.probe_offset_limit = params_.probe_offset_limit;
-  c.min_frontface_distance =
-      params_.min_frontface_distance *
-      std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
+  c.min_frontface_distance = params_.min_frontface_distance *
+                             std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
   c.backface_threshold = params_.backface_threshold;
   return c;
 }
@@ -437,6 +440,16 @@ Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, Direct
   }
   context_.collect_garbage();
   return timer_.read();
+}
+
+Status IrradianceField::warm_up(uint32_t count, DirectMode direct_mode) {
+  const uint32_t fast = count - count / 4;
+  hysteresis_cap_ = 0.5f;
+  const auto converged = update(fast, direct_mode);
+  hysteresis_cap_ = 1.0f;
+  if (!converged.ok()) return converged.error();
+  const auto settled = update(count - fast, direct_mode);
+  return settled.ok() ? ok_status() : Status(settled.error());
 }
 
 Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries) {

@@ -47,6 +47,10 @@ class IrradianceField {
   void record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode);
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
+  // Converges a new field quickly: three quarters of `count` updates at hysteresis <= 0.5, so
+  // light propagates one bounce per update without lag (a high-albedo room needs hundreds of
+  // updates at 0.97), then the rest at the configured hysteresis to settle the noise.
+  Status warm_up(uint32_t count, DirectMode direct_mode);
 
   // Field irradiance M (= E / pi) at arbitrary points.
   Result<std::vector<glm::vec3>> query(const std::vector<IrradianceQuery>& queries);
@@ -94,6 +98,7 @@ class IrradianceField {
   IrradianceFieldParams params_;
   AtlasLayout layout_;
   uint64_t update_index_ = 0;
+  float hysteresis_cap_ = 1.0f;  // warm_up() lowers the hysteresis below this for a while
   uint64_t gpu_bytes_ = 0;
 
   vk::DescriptorLayout sampling_layout_;  // set 2

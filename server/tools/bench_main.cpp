@@ -78,11 +78,10 @@ Result<IrradianceFieldParams> grid_for(const Scene& scene, const std::string& sp
 }
 
 Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(
-      Flags flags, Flags::parse(argc, argv,
-                                {"width", "height", "frames", "warmup", "grids", "probes", "rays",
-                                 "backend", "field", "device"},
-                                {"help"}));
+  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
+                                                  {"width", "height", "frames", "warmup", "grids",
+                                                   "probes", "rays", "backend", "field", "device"},
+                                                  {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -134,8 +133,7 @@ Status run(int argc, char** argv) {
                                                                   context->default_backend()));
         DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(*context, *gpu_scene, field.get(),
                                                               context->default_backend()));
-        const auto warm = field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
-        if (!warm.ok()) return warm.error();
+        DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), settings.direct_mode));
         std::map<std::string, std::vector<double>> times;
         std::vector<double> field_totals, frame_totals;
         for (int64_t f = 0; f < frames; ++f) {
@@ -160,7 +158,8 @@ Status run(int argc, char** argv) {
             name.c_str(), gpu_scene->triangle_count(), p.counts.x, p.counts.y, p.counts.z,
             static_cast<unsigned long long>(counts.active()),
             static_cast<unsigned long long>(counts.sleeping),
-            static_cast<unsigned long long>(counts.off), p.rays_per_probe, double(field->gpu_bytes()) / (1 << 20), median(times["field trace"]),
+            static_cast<unsigned long long>(counts.off), p.rays_per_probe,
+            double(field->gpu_bytes()) / (1 << 20), median(times["field trace"]),
             median(times["field shade"]), median(times["blend irradiance"]),
             median(times["blend distance"]), median(times["borders"]), field_ms,
             double(field->rays_per_update()) / (field_ms * 1e3), median(times["primary"]),

@@ -207,8 +207,7 @@ Status run(int argc, char** argv) {
                             IrradianceField::create(*context, *gpu_scene, params, backend));
       DDGI_ASSIGN_OR_RETURN(auto renderer,
                             Renderer::create(*context, *gpu_scene, field.get(), backend));
-      const auto warm = field->update(static_cast<uint32_t>(warmup), DirectMode::kTracedShadows);
-      if (!warm.ok()) return warm.error();
+      DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), DirectMode::kTracedShadows));
       FrameSettings settings;
       settings.width = pt.width;
       settings.height = pt.height;

@@ -40,7 +40,8 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
   --exposure X          linear multiplier before tone mapping           [1]
   --jpeg-quality Q      1..100                                          [90]
   --gi on|off           indirect light from a DDGI irradiance field      [on]
-  --warmup N            field updates before the first frame             [64]
+  --warmup N            field updates before the first frame, most at low     [128]
+                        hysteresis so light converges fast (IrradianceField::warm_up)
   --field NAME=VALUE    set a field parameter (repeatable); --field help lists them
                         [grid from the scene's sidecar, else fitted to its bounds]
   --frames N            render N times (one field update each) and report median times [1]
@@ -136,7 +137,7 @@ Status run(int argc, char** argv) {
 
   DDGI_ASSIGN_OR_RETURN(const std::string gi, flags.get_string("gi", "on"));
   if (gi != "on" && gi != "off") return invalid_argument("--gi must be on or off");
-  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 64, 0, 100000));
+  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 128, 0, 100000));
   const std::vector<std::string> field_assignments = flags.get_all("field");
   if (!field_assignments.empty() && field_assignments.front() == "help") {
     for (const FieldParamInfo& info : field_param_infos()) {
@@ -206,8 +207,7 @@ Status run(int argc, char** argv) {
     const ProbeStateCounts counts = field->probe_counts();
     LOG_INFO << "probe states: " << counts.vigilant << " vigilant, " << counts.awake << " awake, "
              << counts.sleeping << " sleeping, " << counts.off << " off";
-    const auto warm = field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
-    if (!warm.ok()) return warm.error();
+    DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), settings.direct_mode));
   }
 
   FrameResult frame;
