@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,17 +30,17 @@
 namespace ddgi {
 namespace {
 
-constexpr const char* kUsage = R"(usage: ddgi-shadow-eval SCENE... [flags]
+constexpr const char* kUsage = R"(usage: ddgi-shadow-eval SCENE[@x0,y0,z0,x1,y1,z1]... [flags]
 
 Measures the direct-lighting modes against the path-traced reference. For each SCENE: path-trace
 the direct-only reference (emission seen + punctual lights, what the frame's direct view shows)
 and the full image with --spp samples; warm up an irradiance field for the full images; then for
 each mode (shadow-rays, unshadowed, shadow-field at every --resolutions entry, and the first
 resolution again with split updates) render the direct and the full view, score PSNR, SSIM and
-mean FLIP on the tone-mapped images (ACES, one exposure per scene: the reference's 95th-percentile
-luminance maps to 0.8), and take the
-median GPU ms over --frames frames of the direct light (direct pass + shadow-field update) and
-of the whole frame. Then the shadow field's per-pass times (the thesis's Table 7.8).
+mean FLIP on the tone-mapped images (ACES; one exposure per scene: the reference's 95th-
+percentile luminance maps to 0.8), and take the median GPU ms over --frames frames of the
+direct light (direct pass + shadow-field update) and of the whole frame. Then the shadow field's per-pass times (the thesis's Table 7.8).
+A box after @ is what the shadow grids are fitted to (default: the scene's bounds).
 
   --width N --height N  image size                                     [480 x 270]
   --spp N               reference samples per pixel                    [1024]
@@ -177,9 +178,38 @@ struct Options {
   std::vector<std::string> shadow_assignments;
 };
 
-Status evaluate_scene(vk::Context& context, const std::string& scene_path, const Options& o,
+// "PATH" or "PATH@x0,y0,z0,x1,y1,z1": a scene and the box its shadow fields are fitted to
+// (default: the scene's bounds; a huge ground plane would spread the probes too thin).
+struct SceneArg {
+  std::string path;
+  std::optional<Bounds> region;
+};
+
+Result<SceneArg> parse_scene_arg(const std::string& text) {
+  const size_t at = text.rfind('@');
+  if (at == std::string::npos) return SceneArg{text, std::nullopt};
+  std::vector<double> v;
+  std::stringstream items(text.substr(at + 1));
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    DDGI_ASSIGN_OR_RETURN(const double value, parse_double(item, "scene region"));
+    v.push_back(value);
+  }
+  if (v.size() != 6 || !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5])) {
+    return invalid_argument("'" + text +
+                            "': the region after @ must be x0,y0,z0,x1,y1,z1 with "
+                            "each minimum below its maximum");
+  }
+  Bounds region;
+  region.grow(glm::vec3(v[0], v[1], v[2]));
+  region.grow(glm::vec3(v[3], v[4], v[5]));
+  return SceneArg{text.substr(0, at), region};
+}
+
+Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& o,
                       std::vector<PassRow>& pass_rows, ScatterPlot& plot) {
   const vk::TraceBackend backend = context.default_backend();
+  const std::string& scene_path = arg.path;
   DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
   DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
   const std::string stem = file_stem(scene_path);
@@ -224,7 +254,8 @@ Status evaluate_scene(vk::Context& context, const std::string& scene_path, const
   std::vector<ModeRun> runs = {{"shadow-rays", DirectMode::kTracedShadows, false, {}},
                                {"unshadowed", DirectMode::kUnshadowed, false, {}}};
   for (size_t r = 0; r < o.resolutions.size(); ++r) {
-    ShadowFieldParams p = fit_shadow_grid(scene.world_bounds(), o.resolutions[r].cells);
+    ShadowFieldParams p =
+        fit_shadow_grid(arg.region.value_or(scene.world_bounds()), o.resolutions[r].cells);
     p.texels = o.resolutions[r].texels;
     DDGI_TRY(apply_shadow_assignments(p, o.shadow_assignments));
     runs.push_back({"shadow-field", DirectMode::kShadowField, true, p});
@@ -388,8 +419,9 @@ Status run(int argc, char** argv) {
   plot.title = "Direct light: error vs GPU time (" + context->caps().device_name + ")";
   plot.x_label = "direct light GPU ms per frame (direct pass + shadow-field update), log scale";
   plot.y_label = "mean FLIP of the direct image vs the path-traced reference";
-  for (const std::string& scene_path : flags.positional()) {
-    DDGI_TRY(evaluate_scene(*context, scene_path, o, pass_rows, plot));
+  for (const std::string& text : flags.positional()) {
+    DDGI_ASSIGN_OR_RETURN(const SceneArg arg, parse_scene_arg(text));
+    DDGI_TRY(evaluate_scene(*context, arg, o, pass_rows, plot));
   }
   print_pass_table(pass_rows);
   if (!svg_path.empty()) DDGI_TRY(write_text_file(svg_path, scatter_plot_svg(plot)));
