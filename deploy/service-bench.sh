@@ -29,6 +29,14 @@ bundle() {
   du -sh "$carry"
 }
 
+# The server's Prometheus text (no curl needed).
+scrape() {
+  exec 3<>/dev/tcp/127.0.0.1/9464
+  printf 'GET /metrics HTTP/1.0\r\n\r\n' >&3
+  cat <&3
+  exec 3<&-
+}
+
 run() {
   local out=$1
   mkdir -p "$out"
@@ -40,7 +48,7 @@ run() {
   if [ ! -e ../shared/scenes ]; then mkdir -p ../shared && ln -s "$PWD/$carry/scenes" ../shared/scenes; fi
   export LD_LIBRARY_PATH="$PWD/$carry/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   local bin="$PWD/$carry/bin"
-  "$bin/ddgi-server" --listen 127.0.0.1:0 --port-file "$out/port" --metrics-port -1 \
+  "$bin/ddgi-server" --listen 127.0.0.1:0 --port-file "$out/port" --metrics-port 9464 \
     --max-fps 1000 --encode-threads "${ENCODE_THREADS:-8}" --scene-root scenes \
     >"$out/server.log" 2>&1 &
   local server=$!
@@ -52,14 +60,33 @@ run() {
     local session
     session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/$scene.session.json" | head -n 1)
     for size in ${SIZES:-1280x720 1920x1080}; do
+      scrape >"$out/$scene.$size.metrics.before"
       "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
         --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
         --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
         --out "$out/$scene.$size.jpg" >"$out/$scene.$size.json"
+      scrape >"$out/$scene.$size.metrics.after"
       echo "$scene $size: $(tr -d '\n ' <"$out/$scene.$size.json")"
+      grep -E '^ddgi_(frame|gi_update|encode)_seconds_(sum|count)|^ddgi_frames_(rendered|sent|dropped)_total' \
+        "$out/$scene.$size.metrics.after"
     done
     "${client[@]}" close --session "$session" >/dev/null
   done
+  # Several clients on one session: one field update per frame serves all their views.
+  local views=${MULTI_VIEWS:-4} scenes=${SCENES:-cornell_box}
+  local scene=${scenes%% *}
+  scene=${scene:-cornell_box}
+  "${client[@]}" load "$scene" --warmup "${WARMUP:-32}" >"$out/multi.session.json"
+  local session pids=()
+  session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/multi.session.json" | head -n 1)
+  for i in $(seq 1 "$views"); do
+    "${client[@]}" stream --session "$session" --width 1280 --height 720 --frames 1000000 \
+      --seconds "${SECONDS_PER_RUN:-10}" >"$out/multi.$i.json" &
+    pids+=($!)
+  done
+  wait "${pids[@]}"
+  for i in $(seq 1 "$views"); do echo "multi $i/$views 1280x720: $(tr -d '\n ' <"$out/multi.$i.json")"; done
+  "${client[@]}" close --session "$session" >/dev/null
   kill -TERM "$server"
   wait "$server"
 }
