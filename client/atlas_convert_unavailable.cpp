@@ -4,8 +4,7 @@
 
 namespace ddgi::client {
 
-Result<AtlasTexels> atlas_texels(const v1::AtlasMetadata&, const std::string&,
-                                 const std::string&) {
+Result<AtlasTexels> atlas_texels(const v1::AtlasMetadata&, const std::string&, const std::string&) {
   return failed_precondition(
       "this ddgi-client-lean has no OpenImageIO: --convert needs the full ddgi-client");
 }

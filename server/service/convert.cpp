@@ -14,20 +14,26 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kMaxMagnitude = 1e9f;  // colours, intensities, ranges
 constexpr float kMaxCoordinate = 1e12f;
 
-// "%g" without the exponent's sign and padding: 1e9, not 1e+09.
+// "%g" without the exponent's sign and leading zeros: 1e9, not 1e+09.
 std::string num(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%g", value);
-  std::string out = text;
-  for (const char* noise : {"e+0", "e+"}) {
-    if (auto at = out.find(noise); at != std::string::npos) out.replace(at, strlen(noise), "e");
+  std::string out;
+  for (const char* c = text; *c; ++c) {
+    out += *c;
+    if (*c != 'e') continue;
+    if (c[1] == '+') ++c;
+    if (c[1] == '-') out += *++c;
+    while (c[1] == '0' && c[2] != '\0') ++c;
   }
-  if (auto at = out.find("e-0"); at != std::string::npos) out.replace(at, 3, "e-");
   return out;
 }
 
 std::string vec_text(const glm::vec3& v) {
-  return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+  // Appended piece by piece: GCC 12 at -O3 warns falsely (-Wrestrict) on "(" + std::string.
+  std::string out = "(";
+  out.append(num(v.x)).append(", ").append(num(v.y)).append(", ").append(num(v.z)).append(")");
+  return out;
 }
 
 bool finite(const glm::vec3& v) {

@@ -367,7 +367,8 @@ void Session::fill_info(v1::SessionInfo* info) const {
 // ---- Views --------------------------------------------------------------------------------------
 
 std::string Session::new_view_id() {
-  return "v" + std::to_string(next_view_number_++);
+  std::string id = "v";  // appended: GCC 12 at -O3 warns falsely (-Wrestrict) on "v" + string
+  return id.append(std::to_string(next_view_number_++));
 }
 
 Result<Session::ViewState*> Session::find_view(const std::string& view_id) {
