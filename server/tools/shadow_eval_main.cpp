@@ -32,15 +32,19 @@ namespace {
 
 constexpr const char* kUsage = R"(usage: ddgi-shadow-eval SCENE[@x0,y0,z0,x1,y1,z1]... [flags]
 
-Measures the direct-lighting modes against the path-traced reference. For each SCENE: path-trace
-the direct-only reference (emission seen + punctual lights, what the frame's direct view shows)
-and the full image with --spp samples; warm up an irradiance field for the full images; then for
-each mode (shadow-rays, unshadowed, shadow-field at every --resolutions entry, and the first
-resolution again with split updates) render the direct and the full view, score PSNR, SSIM and
-mean FLIP on the tone-mapped images (ACES; one exposure per scene: the reference's 95th-
-percentile luminance maps to 0.8), and take the median GPU ms over --frames frames of the
-direct light (direct pass + shadow-field update) and of the whole frame. Then the shadow field's per-pass times (the thesis's Table 7.8).
-A box after @ is what the shadow grids are fitted to (default: the scene's bounds).
+Measures the direct-lighting modes against the path-traced reference. For each SCENE:
+ 1. path-trace the direct-only reference (emission seen + punctual lights: what the frame's
+    direct view shows) and the full image, --spp samples each;
+ 2. set up every mode: shadow-rays, unshadowed, shadow-field at every --resolutions entry, and
+    the first resolution again with split updates; each mode gets its own irradiance field
+    (for the full image; its probe rays lit in that mode) and shadow field, warmed up;
+ 3. render --frames frames of each mode, the modes taking turns (so that all see the same GPU
+    clocks), after as many untimed ones; median GPU ms of the direct light (direct pass +
+    shadow-field update) and of the whole frame;
+ 4. score the full and the direct view with PSNR, SSIM and mean FLIP on ACES-tone-mapped images
+    (one exposure per scene: the reference's 95th-percentile luminance maps to 0.8).
+Then the shadow field's per-pass times (the thesis's Table 7.8). All of it as markdown. A box
+after @ is what the shadow grids are fitted to (default: the scene's bounds).
 
   --width N --height N  image size                                     [480 x 270]
   --spp N               reference samples per pixel                    [1024]
@@ -243,14 +247,6 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
   DDGI_TRY(
       write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, direct_reference.ldr));
 
-  std::unique_ptr<IrradianceField> field;
-  if (o.gi) {
-    DDGI_ASSIGN_OR_RETURN(
-        field, IrradianceField::create(context, *gpu_scene, default_field_params(scene), backend));
-    const auto warm = field->update(o.warmup, DirectMode::kTracedShadows);
-    if (!warm.ok()) return warm.error();
-  }
-
   std::vector<ModeRun> runs = {{"shadow-rays", DirectMode::kTracedShadows, false, {}},
                                {"unshadowed", DirectMode::kUnshadowed, false, {}}};
   for (size_t r = 0; r < o.resolutions.size(); ++r) {
@@ -265,77 +261,101 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
     }
   }
 
-  PlotSeries series{stem, {}};
-  for (const ModeRun& run : runs) {
+  // Every mode's field and renderer first, then their frames in turn: a GPU's clocks follow its
+  // load, and timing one mode after another made whichever came after a pause (a pipeline
+  // compile, a warm-up) up to 2.5x slower on the H100. Taking turns gives every mode the same
+  // conditions.
+  struct Live {
+    std::unique_ptr<IrradianceField> field;  // its probe rays are lit in the mode too
     std::unique_ptr<ShadowField> shadow;
-    std::string grid = "-";
-    if (run.has_shadow_field) {
-      DDGI_ASSIGN_OR_RETURN(shadow, ShadowField::create(context, *gpu_scene, run.shadow, backend));
-      const auto warm = shadow->update(o.warmup, run.mode);
-      if (!warm.ok()) return warm.error();
-      const glm::ivec3 c = run.shadow.counts;
-      grid = std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z) + ", " +
-             std::to_string(run.shadow.texels) + "^2";
-    }
-    DDGI_ASSIGN_OR_RETURN(
-        auto renderer, Renderer::create(context, *gpu_scene, field.get(), backend, shadow.get()));
-    FrameSettings settings;
-    settings.width = o.width;
-    settings.height = o.height;
-    settings.camera = pt.camera;
-    settings.exposure = exposure;
-    settings.direct_mode = run.mode;
-    settings.light_samples = o.light_samples;
+    std::unique_ptr<Renderer> renderer;
     std::vector<double> direct_ms, frame_ms;
     std::map<std::string, std::vector<double>> shadow_passes;
-    FrameResult full, direct;
-    // One untimed frame first: drivers may compile pipelines at their first dispatch.
-    settings.view = View::kFull;
-    DDGI_TRY(renderer->render(settings));
-    for (uint32_t f = 0; f < o.frames; ++f) {
-      settings.view = View::kFull;
-      DDGI_ASSIGN_OR_RETURN(full, renderer->render(settings));
+    FrameResult full;
+  };
+  std::vector<Live> live(runs.size());
+  for (size_t m = 0; m < runs.size(); ++m) {
+    if (o.gi) {
+      DDGI_ASSIGN_OR_RETURN(
+          live[m].field,
+          IrradianceField::create(context, *gpu_scene, default_field_params(scene), backend));
+      const auto warm = live[m].field->update(o.warmup, runs[m].mode);
+      if (!warm.ok()) return warm.error();
+    }
+    if (runs[m].has_shadow_field) {
+      DDGI_ASSIGN_OR_RETURN(live[m].shadow,
+                            ShadowField::create(context, *gpu_scene, runs[m].shadow, backend));
+      const auto warm = live[m].shadow->update(o.warmup, runs[m].mode);
+      if (!warm.ok()) return warm.error();
+    }
+    DDGI_ASSIGN_OR_RETURN(
+        live[m].renderer,
+        Renderer::create(context, *gpu_scene, live[m].field.get(), backend, live[m].shadow.get()));
+  }
+  FrameSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.camera = pt.camera;
+  settings.exposure = exposure;
+  settings.light_samples = o.light_samples;
+  settings.view = View::kFull;
+  // As many untimed rounds first: drivers may compile pipelines at their first dispatch.
+  for (uint32_t f = 0; f < 2 * o.frames; ++f) {
+    const bool timed = f >= o.frames;
+    for (size_t m = 0; m < runs.size(); ++m) {
+      settings.direct_mode = runs[m].mode;
+      DDGI_ASSIGN_OR_RETURN(live[m].full, live[m].renderer->render(settings));
+      if (!timed) continue;
       double direct_total = 0.0, frame_total = 0.0;
-      for (const vk::PassTime& t : full.pass_times) {
+      for (const vk::PassTime& t : live[m].full.pass_times) {
         frame_total += t.milliseconds;
         if (t.name == "direct" || is_shadow_pass(t.name)) direct_total += t.milliseconds;
-        if (is_shadow_pass(t.name)) shadow_passes[t.name].push_back(t.milliseconds);
+        if (is_shadow_pass(t.name)) live[m].shadow_passes[t.name].push_back(t.milliseconds);
       }
-      direct_ms.push_back(direct_total);
-      frame_ms.push_back(frame_total);
+      live[m].direct_ms.push_back(direct_total);
+      live[m].frame_ms.push_back(frame_total);
     }
+  }
+
+  PlotSeries series{stem, {}};
+  for (size_t m = 0; m < runs.size(); ++m) {
+    const ModeRun& run = runs[m];
+    Live& l = live[m];
+    settings.direct_mode = run.mode;
     settings.view = View::kDirect;
-    DDGI_ASSIGN_OR_RETURN(direct, renderer->render(settings));
+    DDGI_ASSIGN_OR_RETURN(const FrameResult direct, l.renderer->render(settings));
     DDGI_ASSIGN_OR_RETURN(const Scores d,
                           score(direct_reference.ldr, direct.ldr, o.width, o.height));
-    DDGI_ASSIGN_OR_RETURN(const Scores f, score(full_reference.ldr, full.ldr, o.width, o.height));
+    DDGI_ASSIGN_OR_RETURN(const Scores f, score(full_reference.ldr, l.full.ldr, o.width, o.height));
+    std::string grid = "-", label = run.name == "shadow-rays" ? "rays" : "none";
+    if (run.has_shadow_field) {
+      const glm::ivec3 c = run.shadow.counts;
+      const std::string counts =
+          std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z);
+      grid = counts + ", " + std::to_string(run.shadow.texels) + "^2";
+      label = (run.shadow.split_update ? "split " : "") + counts + "/" +
+              std::to_string(run.shadow.texels);
+      PassRow row{stem,
+                  grid + (run.shadow.split_update ? ", split" : ""),
+                  l.shadow->rays_per_update(run.mode),
+                  {}};
+      for (auto& [name, values] : l.shadow_passes) row.ms[name] = median(values);
+      pass_rows.push_back(row);
+    }
     std::string tag = run.name + (run.has_shadow_field ? "-" + std::to_string(run.shadow.counts.x) +
                                                              "x" + std::to_string(run.shadow.texels)
                                                        : "");
     std::replace(tag.begin(), tag.end(), ' ', '-');
-    DDGI_TRY(write_png(o.out_dir, stem + "." + tag, o.width, o.height, full.ldr));
+    DDGI_TRY(write_png(o.out_dir, stem + "." + tag, o.width, o.height, l.full.ldr));
     DDGI_TRY(write_png(o.out_dir, stem + "." + tag + "-direct", o.width, o.height, direct.ldr));
 
-    const double shadow_mib = shadow ? double(shadow->gpu_bytes()) / (1 << 20) : 0.0;
+    const double shadow_mib = l.shadow ? double(l.shadow->gpu_bytes()) / (1 << 20) : 0.0;
     std::printf("| %s | %s | %s | %.1f | %s | %.4f | %.4f | %s | %.4f | %.4f | %.3f | %.3f |\n",
                 stem.c_str(), run.name.c_str(), grid.c_str(), shadow_mib, fixed(d.psnr, 2).c_str(),
-                d.ssim, d.flip, fixed(f.psnr, 2).c_str(), f.ssim, f.flip, median(direct_ms),
-                median(frame_ms));
+                d.ssim, d.flip, fixed(f.psnr, 2).c_str(), f.ssim, f.flip, median(l.direct_ms),
+                median(l.frame_ms));
     std::fflush(stdout);
-
-    std::string label = run.name == "shadow-rays" ? "rays" : run.name == "unshadowed" ? "none" : "";
-    if (run.has_shadow_field) {
-      label = (run.shadow.split_update ? "split " : "") + std::to_string(run.shadow.counts.x) +
-              "x" + std::to_string(run.shadow.counts.y) + "x" +
-              std::to_string(run.shadow.counts.z) + "/" + std::to_string(run.shadow.texels);
-      PassRow row{stem,
-                  grid + (run.shadow.split_update ? ", split" : ""),
-                  shadow->rays_per_update(run.mode),
-                  {}};
-      for (auto& [name, values] : shadow_passes) row.ms[name] = median(values);
-      pass_rows.push_back(row);
-    }
-    series.points.push_back({median(direct_ms), d.flip, label});
+    series.points.push_back({median(l.direct_ms), d.flip, label});
   }
   plot.series.push_back(series);
   return ok_status();
