@@ -21,7 +21,8 @@ mkdir -p "${work}" "${artifacts}"
 
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-"${build}/fuzz_gltf_loader" "${work}" "${root}/tests/fuzz/corpus" \
+# regressions/ holds inputs that once crashed the loader: they are replayed with the seeds.
+"${build}/fuzz_gltf_loader" "${work}" "${root}/tests/fuzz/corpus" "${root}/tests/fuzz/regressions" \
   -dict="${root}/tests/fuzz/gltf.dict" \
   -max_total_time="${seconds}" -max_len=65536 -timeout=10 -rss_limit_mb=2560 \
   -artifact_prefix="${artifacts}/" -print_final_stats=1
