@@ -58,7 +58,12 @@ Status convert_atlas(const AtlasTexels& texels, v1::AtlasKind kind, const std::s
   // 8-bit previews: RGB only; distance moments scaled to the largest finite value per channel.
   const uint32_t out_channels = keep_floats ? texels.channels : 3;
   std::vector<float> scale(texels.channels, 1.0f);
-  if (!keep_floats && kind == v1::ATLAS_KIND_DISTANCE) {
+  // Distances, moments and probe offsets: scaled to their largest value (visibility, irradiance
+  // and AO are in [0, 1] already).
+  const bool scale_to_max = kind == v1::ATLAS_KIND_DISTANCE ||
+                            kind == v1::ATLAS_KIND_SHADOW_MOMENTS ||
+                            kind == v1::ATLAS_KIND_PROBE_STATES;
+  if (!keep_floats && scale_to_max) {
     for (uint32_t c = 0; c < texels.channels; ++c) {
       float largest = 0.0f;
       for (size_t i = c; i < texels.values.size(); i += texels.channels) {

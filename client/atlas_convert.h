@@ -1,7 +1,8 @@
 // Client-side conversion of probe-atlas dumps (EXR or raw float32 from DumpAtlas) to any format
 // OpenImageIO writes: float formats (.exr, .tif, .hdr, .pfm) keep the values; 8-bit formats
-// (.png, .jpg, ...) get a preview: irradiance (already perceptually encoded) clamped to [0,1],
-// distance moments scaled by their largest finite value.
+// (.png, .jpg, ...) get a preview: irradiance (already perceptually encoded) and visibility
+// clamped to [0,1]; distances, shadow moments and probe states scaled by their largest finite
+// value per channel.
 #pragma once
 
 #include <string>

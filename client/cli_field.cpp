@@ -13,6 +13,11 @@ int params(Cli& cli) {
   const auto& args = cli.flags.positional();
   const std::string action = args.size() > 1 ? args[1] : "";
   DDGI_CLI_TRY(const std::string session, session_flag(cli.flags));
+  DDGI_CLI_TRY(const std::string field, cli.flags.get_string("field", "irradiance"));
+  if (field != "irradiance" && field != "shadow") {
+    return report(invalid_argument("--field must be irradiance or shadow (got '" + field + "')"));
+  }
+  const v1::FieldKind kind = field == "shadow" ? v1::FIELD_KIND_SHADOW : v1::FIELD_KIND_IRRADIANCE;
   v1::FieldParams reply;
   auto context = cli.context();
   grpc::Status status;
@@ -20,10 +25,12 @@ int params(Cli& cli) {
     if (args.size() > 2) return report(invalid_argument("params get takes no NAME=VALUE"));
     v1::GetFieldParamsRequest request;
     request.set_session_id(session);
+    request.set_field(kind);
     status = cli.stub->GetFieldParams(context.get(), request, &reply);
   } else if (action == "set") {
     v1::SetFieldParamsRequest request;
     request.set_session_id(session);
+    request.set_field(kind);
     for (size_t i = 2; i < args.size(); ++i) {
       const auto equals = args[i].find('=');
       if (equals == std::string::npos) {
@@ -50,9 +57,11 @@ Result<v1::AtlasKind> kind_flag(const Flags& flags) {
   if (kind == "irradiance") return v1::ATLAS_KIND_IRRADIANCE;
   if (kind == "distance") return v1::ATLAS_KIND_DISTANCE;
   if (kind == "shadow") return v1::ATLAS_KIND_SHADOW;
+  if (kind == "shadow-moments") return v1::ATLAS_KIND_SHADOW_MOMENTS;
   if (kind == "probe-states") return v1::ATLAS_KIND_PROBE_STATES;
-  return invalid_argument("--kind must be irradiance, distance, shadow or probe-states (got '" +
-                          kind + "')");
+  return invalid_argument(
+      "--kind must be irradiance, distance, shadow, shadow-moments or probe-states (got '" + kind +
+      "')");
 }
 
 int atlas(Cli& cli) {
@@ -182,20 +191,20 @@ int query(Cli& cli) {
 
 void add_field_commands(std::vector<CommandSpec>& commands) {
   commands.push_back({"params",
-                      "get|set --session ID [NAME=VALUE ...]",
-                      "read or change irradiance-field parameters (the reply has every value "
-                      "in effect)",
-                      {"session"},
+                      "get|set --session ID [--field irradiance|shadow] [NAME=VALUE ...]",
+                      "read or change a field's parameters (the reply has every value in effect)",
+                      {"session", "field"},
                       {},
                       params});
-  commands.push_back({"atlas",
-                      "--session ID [--kind irradiance|distance|shadow|probe-states] "
-                      "[--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
-                      "dump a probe atlas (metadata to stdout and FILE.json), optionally "
-                      "converted through OpenImageIO",
-                      {"session", "kind", "format", "out", "convert"},
-                      {},
-                      atlas});
+  commands.push_back(
+      {"atlas",
+       "--session ID [--kind irradiance|distance|shadow|shadow-moments|probe-states] "
+       "[--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
+       "dump a probe atlas (metadata to stdout and FILE.json), optionally "
+       "converted through OpenImageIO",
+       {"session", "kind", "format", "out", "convert"},
+       {},
+       atlas});
   commands.push_back({"query",
                       "--session ID --points 'px,py,pz,nx,ny,nz;...' | --points-file FILE",
                       "field irradiance (E/pi) at points",

@@ -90,9 +90,24 @@ int load(Cli& cli) {
       request.set_direct_mode(v1::DIRECT_MODE_SHADOW_RAYS);
     } else if (direct == "unshadowed") {
       request.set_direct_mode(v1::DIRECT_MODE_UNSHADOWED);
+    } else if (direct == "shadow-field") {
+      request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
+    } else if (direct == "ao") {
+      request.set_direct_mode(v1::DIRECT_MODE_AMBIENT_OCCLUSION);
     } else {
-      return report(invalid_argument("--direct must be shadow-rays or unshadowed"));
+      return report(
+          invalid_argument("--direct must be shadow-rays, unshadowed, shadow-field or ao"));
     }
+  }
+  for (const std::string& assignment : cli.flags.get_all("shadow-field")) {
+    const auto equals = assignment.find('=');
+    if (equals == std::string::npos) {
+      return report(
+          invalid_argument("--shadow-field expects NAME=VALUE (got '" + assignment + "')"));
+    }
+    auto* p = request.add_shadow_field_params();
+    p->set_name(assignment.substr(0, equals));
+    p->set_value(assignment.substr(equals + 1));
   }
   return unary<v1::CreateSessionRequest, v1::SessionInfo>(
       cli, request,
@@ -302,9 +317,9 @@ void add_session_commands(std::vector<CommandSpec>& commands) {
   commands.push_back(
       {"load",
        "SCENE | --upload FILE.glb [--gi on|off] [--warmup N] [--field NAME=VALUE]... "
-       "[--direct shadow-rays|unshadowed]",
+       "[--direct shadow-rays|unshadowed|shadow-field|ao] [--shadow-field NAME=VALUE]...",
        "create a session on a library scene or an uploaded .glb",
-       {"upload", "gi", "warmup", "field", "direct"},
+       {"upload", "gi", "warmup", "field", "direct", "shadow-field"},
        {},
        load});
   commands.push_back({"reload",

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "shared/field_data.h"
+#include "shared/shadow_field_data.h"
 
 namespace ddgi::service {
 namespace {
@@ -62,28 +63,34 @@ void add_attributes(Imf::Header& header, const v1::AtlasMetadata& m) {
 
 }  // namespace
 
-v1::AtlasMetadata atlas_metadata(const IrradianceField& field, v1::AtlasKind kind,
-                                 v1::AtlasFormat format, const IrradianceField::AtlasImage& image) {
+namespace {
+
+void set_vec(v1::Vec3* out, const glm::vec3& v) {
+  out->set_x(v.x);
+  out->set_y(v.y);
+  out->set_z(v.z);
+}
+
+void set_grid(v1::AtlasMetadata& m, const glm::vec3& origin, const glm::vec3& spacing,
+              const glm::ivec3& counts) {
+  m.set_probe_counts_x(counts.x);
+  m.set_probe_counts_y(counts.y);
+  m.set_probe_counts_z(counts.z);
+  set_vec(m.mutable_grid_origin(), origin);
+  set_vec(m.mutable_probe_spacing(), spacing);
+}
+
+v1::AtlasMetadata field_metadata(const IrradianceField& field, v1::AtlasKind kind,
+                                 v1::AtlasFormat format, const AtlasImage& image) {
   const IrradianceFieldParams& p = field.params();
-  const AtlasLayout layout = atlas_layout(p);
   v1::AtlasMetadata m;
   m.set_kind(kind);
   m.set_format(format);
   m.set_width(image.width);
   m.set_height(image.height);
-  m.set_probe_counts_x(p.counts.x);
-  m.set_probe_counts_y(p.counts.y);
-  m.set_probe_counts_z(p.counts.z);
-  auto* origin = m.mutable_grid_origin();
-  origin->set_x(p.origin.x);
-  origin->set_y(p.origin.y);
-  origin->set_z(p.origin.z);
-  auto* spacing = m.mutable_probe_spacing();
-  spacing->set_x(p.spacing.x);
-  spacing->set_y(p.spacing.y);
-  spacing->set_z(p.spacing.z);
+  set_grid(m, p.origin, p.spacing, p.counts);
   m.set_border_texels(gpu::kAtlasBorder);
-  m.set_tiles_per_row(layout.tiles_per_row);
+  m.set_tiles_per_row(atlas_layout(p).tiles_per_row);
   m.set_field_updates(field.updates());
   if (kind == v1::ATLAS_KIND_IRRADIANCE) {
     for (const char* c : {"R", "G", "B", "A"}) m.add_channels(c);
@@ -103,8 +110,144 @@ v1::AtlasMetadata atlas_metadata(const IrradianceField& field, v1::AtlasKind kin
   return m;
 }
 
-Result<std::vector<uint8_t>> encode_atlas(const IrradianceField::AtlasImage& image,
-                                          v1::AtlasMetadata& metadata) {
+v1::AtlasMetadata shadow_metadata(const ShadowField& shadow, v1::AtlasKind kind,
+                                  v1::AtlasFormat format, const AtlasImage& image) {
+  const ShadowFieldParams& p = shadow.params();
+  v1::AtlasMetadata m;
+  m.set_kind(kind);
+  m.set_format(format);
+  m.set_width(image.width);
+  m.set_height(image.height);
+  set_grid(m, p.origin, p.spacing, p.counts);
+  m.set_border_texels(gpu::kShadowAtlasBorder);
+  m.set_tiles_per_row(shadow.atlas_layout().tiles_per_row);
+  m.set_texels_per_probe(p.texels);
+  m.set_encoding_gamma(1.0f);
+  m.set_field_updates(shadow.updates());
+  if (kind == v1::ATLAS_KIND_SHADOW) {
+    for (const char* c : {"light0", "light1", "light2", "light3"}) m.add_channels(c);
+    m.set_description(
+        "octahedral light visibility per probe in [0,1], tiles of (texels+2*border)^2 in probe "
+        "order; " +
+        std::to_string(shadow.atlas_layout().light_groups) + " band(s) of " +
+        std::to_string(shadow.atlas_layout().tile_rows) +
+        " tile rows stacked vertically: band k holds lights 4k..4k+3 in its channels; " +
+        std::to_string(shadow.kept_lights()) + " light(s) kept");
+  } else {
+    for (const char* c : {"mean", "mean2", "ao", "weight"}) m.add_channels(c);
+    m.set_description(
+        "octahedral moments per probe, same tiling as the visibility's first band: mean hit "
+        "distance, mean squared distance (world units), ambient occlusion, history weight");
+  }
+  return m;
+}
+
+// One texel per probe: relocation offset and state.
+std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
+    const IrradianceField& field, const std::vector<gpu::ProbeState>& states,
+    v1::AtlasFormat format) {
+  const IrradianceFieldParams& p = field.params();
+  AtlasImage image;
+  image.width = static_cast<uint32_t>(p.counts.x);
+  image.height = static_cast<uint32_t>(p.counts.y * p.counts.z);
+  image.channels = 4;
+  image.texels.reserve(states.size() * 4);
+  for (const gpu::ProbeState& state : states) {
+    image.texels.insert(image.texels.end(),
+                        {state.offset.x, state.offset.y, state.offset.z,
+                         float((state.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift)});
+  }
+  v1::AtlasMetadata m;
+  m.set_kind(v1::ATLAS_KIND_PROBE_STATES);
+  m.set_format(format);
+  m.set_width(image.width);
+  m.set_height(image.height);
+  set_grid(m, p.origin, p.spacing, p.counts);
+  m.set_texels_per_probe(1);
+  m.set_tiles_per_row(image.width);
+  m.set_encoding_gamma(1.0f);
+  m.set_field_updates(field.updates());
+  for (const char* c : {"offset_x", "offset_y", "offset_z", "state"}) m.add_channels(c);
+  m.set_description(
+      "one texel per probe, x fastest then y then z (row = y + z * probes_y): relocation offset "
+      "from the grid position (world units) and state (0 vigilant, 1 awake, 2 sleeping, 3 off)");
+  return {std::move(m), std::move(image)};
+}
+
+}  // namespace
+
+Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image) {
+  AtlasImage atlas;
+  atlas.width = image.width();
+  atlas.height = image.height();
+  switch (image.format()) {
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      atlas.channels = 4;
+      break;
+    case VK_FORMAT_R32G32_SFLOAT:
+      atlas.channels = 2;
+      break;
+    default:
+      return internal_error("atlas image format " + std::to_string(int(image.format())) +
+                            " is not a float format the dump knows");
+  }
+  const VkDeviceSize bytes =
+      VkDeviceSize(atlas.width) * atlas.height * atlas.channels * sizeof(float);
+  DDGI_ASSIGN_OR_RETURN(vk::Buffer readback,
+                        vk::Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "atlas dump readback"));
+  DDGI_TRY(context.submit_and_wait([&](VkCommandBuffer cmd) {
+    vk::barrier_all(cmd);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {atlas.width, atlas.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_GENERAL, readback.handle(), 1,
+                           &copy);
+  }));
+  atlas.texels.resize(size_t(atlas.width) * atlas.height * atlas.channels);
+  std::memcpy(atlas.texels.data(), readback.mapped(), bytes);
+  return atlas;
+}
+
+Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,
+                                                            IrradianceField* field,
+                                                            ShadowField* shadow, v1::AtlasKind kind,
+                                                            v1::AtlasFormat format) {
+  switch (kind) {
+    case v1::ATLAS_KIND_IRRADIANCE:
+    case v1::ATLAS_KIND_DISTANCE: {
+      if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      auto image = kind == v1::ATLAS_KIND_IRRADIANCE ? field->read_irradiance_atlas()
+                                                     : field->read_distance_atlas();
+      if (!image.ok()) return image.error();
+      v1::AtlasMetadata metadata = field_metadata(*field, kind, format, *image);
+      return std::make_pair(std::move(metadata), std::move(image).value());
+    }
+    case v1::ATLAS_KIND_SHADOW:
+    case v1::ATLAS_KIND_SHADOW_MOMENTS: {
+      if (shadow == nullptr) {
+        return failed_precondition(
+            "this session has no shadow field (create it with direct_mode SHADOW_FIELD or "
+            "AMBIENT_OCCLUSION)");
+      }
+      DDGI_ASSIGN_OR_RETURN(
+          AtlasImage image,
+          read_float_image(context, kind == v1::ATLAS_KIND_SHADOW ? shadow->visibility_atlas()
+                                                                  : shadow->moments_atlas()));
+      v1::AtlasMetadata metadata = shadow_metadata(*shadow, kind, format, image);
+      return std::make_pair(std::move(metadata), std::move(image));
+    }
+    case v1::ATLAS_KIND_PROBE_STATES: {
+      if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field->read_probe_states());
+      return probe_state_dump(*field, states, format);
+    }
+    default:
+      return invalid_argument("atlas kind " + std::to_string(int(kind)) + " is not dumped");
+  }
+}
+
+Result<std::vector<uint8_t>> encode_atlas(const AtlasImage& image, v1::AtlasMetadata& metadata) {
   const size_t values = size_t(image.width) * image.height * image.channels;
   if (image.texels.size() != values || image.channels == 0 || image.channels > 4) {
     return internal_error("atlas image has " + std::to_string(image.texels.size()) +

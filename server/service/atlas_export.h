@@ -1,6 +1,7 @@
-// Probe-atlas dumps: the field's atlas texels as a lossless EXR (32-bit float, ZIP) or raw
-// little-endian floats, with metadata that makes the dump self-describing (grid, spacing,
-// texels per probe, border, encoding gamma, update index). The EXR carries the same metadata as
+// Probe-atlas dumps: texels of the fields' atlases (irradiance, distance, shadow visibility,
+// shadow moments) or the probe states, as a lossless EXR (32-bit float, ZIP) or raw
+// little-endian floats, with metadata that makes the dump self-describing (grid, spacing, texels
+// per probe, border, encoding gamma, update index). The EXR carries the same metadata as
 // "ddgi.*" string attributes, so a file alone is enough to interpret it.
 #pragma once
 
@@ -10,14 +11,25 @@
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
 #include "gi/irradiance_field.h"
+#include "gi/shadow_field.h"
+#include "vk/context.h"
+#include "vk/resources.h"
 
 namespace ddgi::service {
 
-v1::AtlasMetadata atlas_metadata(const IrradianceField& field, v1::AtlasKind kind,
-                                 v1::AtlasFormat format, const IrradianceField::AtlasImage& image);
+using AtlasImage = IrradianceField::AtlasImage;
+
+// Reads a float image (RGBA32F or RG32F, GENERAL layout) back to the CPU.
+Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image);
+
+// The dump of `kind` with its metadata (total_bytes not yet set); `shadow` may be null (then
+// the shadow kinds are FAILED_PRECONDITION).
+Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,
+                                                            IrradianceField* field,
+                                                            ShadowField* shadow, v1::AtlasKind kind,
+                                                            v1::AtlasFormat format);
 
 // The dump's bytes; sets metadata.total_bytes.
-Result<std::vector<uint8_t>> encode_atlas(const IrradianceField::AtlasImage& image,
-                                          v1::AtlasMetadata& metadata);
+Result<std::vector<uint8_t>> encode_atlas(const AtlasImage& image, v1::AtlasMetadata& metadata);
 
 }  // namespace ddgi::service

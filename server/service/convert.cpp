@@ -377,6 +377,10 @@ Result<DirectMode> direct_mode_from_proto(v1::DirectMode mode) {
       return DirectMode::kTracedShadows;
     case v1::DIRECT_MODE_UNSHADOWED:
       return DirectMode::kUnshadowed;
+    case v1::DIRECT_MODE_SHADOW_FIELD:
+      return DirectMode::kShadowField;
+    case v1::DIRECT_MODE_AMBIENT_OCCLUSION:
+      return DirectMode::kAmbientOcclusion;
     default:
       return invalid_argument("direct_mode " + std::to_string(int(mode)) + " is not a DirectMode");
   }

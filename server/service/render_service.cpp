@@ -4,6 +4,7 @@
 
 #include "core/log.h"
 #include "gi/field_param_table.h"
+#include "gi/shadow_params_table.h"
 #include "service/atlas_stream.h"
 #include "service/frame_stream.h"
 #include "service/grpc_status.h"
@@ -59,7 +60,11 @@ std::vector<std::string> assignments_of(
 }
 
 // Field-parameter requests carry text: bound it before the parser sees it.
-Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldParam>& params) {
+Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldParam>& params,
+                          v1::FieldKind kind) {
+  if (!v1::FieldKind_IsValid(kind)) {
+    return invalid_argument("field " + std::to_string(int(kind)) + " is not a FieldKind");
+  }
   if (params.size() > 256) {
     return invalid_argument("at most 256 field parameters per request (got " +
                             std::to_string(params.size()) + ")");
@@ -72,6 +77,10 @@ Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldPara
   }
   // Names and values are checked on default parameters now, so typos fail before any queueing;
   // ranges that depend on the scene's grid are checked again when applied.
+  if (kind == v1::FIELD_KIND_SHADOW) {
+    ShadowFieldParams scratch;
+    return apply_shadow_assignments(scratch, assignments_of(params));
+  }
   IrradianceFieldParams scratch;
   return apply_field_assignments(scratch, assignments_of(params));
 }
@@ -160,6 +169,11 @@ grpc::ServerUnaryReactor* RenderServiceImpl::GetServerInfo(grpc::CallbackServerC
       p->set_name(info.name);
       p->set_description(info.description);
     }
+    for (const ShadowParamInfo& info : shadow_param_infos()) {
+      auto* p = reply->add_shadow_field_params();
+      p->set_name(info.name);
+      p->set_description(info.description);
+    }
     done(ok_status());
     return ok_status();
   });
@@ -209,8 +223,15 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
     SessionOptions options;
     options.gi = !request->has_gi() || request->gi();
     DDGI_ASSIGN_OR_RETURN(options.direct_mode, direct_mode_from_proto(request->direct_mode()));
-    DDGI_TRY(check_field_params(request->field_params()));
+    DDGI_TRY(check_field_params(request->field_params(), v1::FIELD_KIND_IRRADIANCE));
     options.field_assignments = assignments_of(request->field_params());
+    if (!request->shadow_field_params().empty() && !uses_shadow_field(options.direct_mode)) {
+      return invalid_argument(
+          "shadow_field_params need direct_mode SHADOW_FIELD or AMBIENT_OCCLUSION (a session "
+          "has a shadow field only in those modes)");
+    }
+    DDGI_TRY(check_field_params(request->shadow_field_params(), v1::FIELD_KIND_SHADOW));
+    options.shadow_assignments = assignments_of(request->shadow_field_params());
     DDGI_TRY(sessions_.create(std::move(options), std::move(scene), reply, done));
     return ok_status();
   });
@@ -370,7 +391,11 @@ grpc::ServerUnaryReactor* RenderServiceImpl::GetFieldParams(
     v1::FieldParams* reply) {
   return unary(context, "GetFieldParams", request->session_id(), [&](Completion& done) -> Status {
     DDGI_ASSIGN_OR_RETURN(auto session, sessions_.find(request->session_id()));
-    session->get_field_params(reply, std::move(done));
+    if (!v1::FieldKind_IsValid(request->field())) {
+      return invalid_argument("field " + std::to_string(int(request->field())) +
+                              " is not a FieldKind");
+    }
+    session->get_field_params(request->field(), reply, std::move(done));
     return ok_status();
   });
 }
@@ -380,9 +405,10 @@ grpc::ServerUnaryReactor* RenderServiceImpl::SetFieldParams(
     v1::FieldParams* reply) {
   return unary(context, "SetFieldParams", request->session_id(), [&](Completion& done) -> Status {
     if (request->params().empty()) return invalid_argument("params is empty: nothing to set");
-    DDGI_TRY(check_field_params(request->params()));
+    DDGI_TRY(check_field_params(request->params(), request->field()));
     DDGI_ASSIGN_OR_RETURN(auto session, sessions_.find(request->session_id()));
-    session->set_field_params(assignments_of(request->params()), reply, std::move(done));
+    session->set_field_params(request->field(), assignments_of(request->params()), reply,
+                              std::move(done));
     return ok_status();
   });
 }
@@ -477,9 +503,9 @@ grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
   if (grpc::Status denied = auth_.check(*context); !denied.ok()) return fail(denied);
   v1::AtlasKind kind = request->kind();
   if (!v1::AtlasKind_IsValid(kind) || kind == v1::ATLAS_KIND_UNSPECIFIED) {
-    return fail(
-        to_grpc(invalid_argument("kind must be IRRADIANCE, DISTANCE, SHADOW or PROBE_STATES (got " +
-                                 std::to_string(int(kind)) + ")")));
+    return fail(to_grpc(invalid_argument(
+        "kind must be IRRADIANCE, DISTANCE, SHADOW, SHADOW_MOMENTS or PROBE_STATES (got " +
+        std::to_string(int(kind)) + ")")));
   }
   v1::AtlasFormat format = request->format();
   if (!v1::AtlasFormat_IsValid(format)) {

@@ -5,6 +5,7 @@
 
 #include "core/log.h"
 #include "gi/field_param_table.h"
+#include "gi/shadow_params_table.h"
 #include "render/camera_fit.h"
 #include "scene/gltf_loader.h"
 #include "service/atlas_export.h"
@@ -12,6 +13,10 @@
 #include "service/text.h"
 
 namespace ddgi::service {
+
+bool uses_shadow_field(DirectMode mode) {
+  return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
+}
 
 int64_t unix_micros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -130,7 +135,8 @@ void Session::loop() {
 void Session::produce_frame() {
   last_frame_start_ = std::chrono::steady_clock::now();
   ++frame_index_;
-  bool field_due = field_ != nullptr;  // one field update per frame, shared by every view
+  // One update of each field per frame, recorded with the first view, shared by every view.
+  bool field_due = field_ != nullptr || shadow_field_ != nullptr;
   std::vector<vk::PassTime> gi_passes;
   double gi_ms = 0.0;
   std::vector<std::string> done_views;
@@ -138,8 +144,7 @@ void Session::produce_frame() {
     std::erase_if(view.streams, [](const auto& stream) { return stream->ended(); });
     if (view.streams.empty() && view.waiters.empty()) continue;
     if (!view.renderer) {
-      auto renderer = Renderer::create(*env_.context, *gpu_scene_, field_.get(),
-                                       env_.context->default_backend());
+      auto renderer = make_renderer();
       if (!renderer.ok()) {
         fail_view(view, renderer.error());
         if (view.one_off || view.owned_by_stream) done_views.push_back(view_id);
@@ -155,7 +160,8 @@ void Session::produce_frame() {
     settings.view = view.config.view;
     settings.tonemap = view.config.tonemap;
     settings.exposure = view.config.exposure;
-    settings.field_updates = field_due ? 1 : 0;
+    settings.field_updates = field_due && field_ ? 1 : 0;
+    settings.shadow_field_updates = field_due && shadow_field_ ? 1 : 0;
     const auto start = std::chrono::steady_clock::now();
     Result<FrameResult> frame = view.renderer->render(settings);
     const double seconds =
@@ -167,7 +173,7 @@ void Session::produce_frame() {
       if (view.one_off || view.owned_by_stream) done_views.push_back(view_id);
       continue;
     }
-    // Passes recorded before "primary" are the field update's.
+    // Passes recorded before "primary" are the field updates' (irradiance and shadow).
     std::vector<vk::PassTime> view_passes;
     bool in_field = field_due;
     for (const vk::PassTime& pass : frame->pass_times) {
@@ -213,7 +219,9 @@ void Session::produce_frame() {
     out.set_last_command_seq(last_applied_seq_);
     out.set_last_command_arrival_unix_us(last_applied_arrival_us_);
     out.set_rendered_unix_us(unix_micros());
-    out.set_field_updates(field_ ? field_->updates() : 0);
+    out.set_field_updates(field_          ? field_->updates()
+                          : shadow_field_ ? shadow_field_->updates()
+                                          : 0);
     job->streams = view.streams;
     job->waiters = std::move(view.waiters);
     view.waiters.clear();
@@ -240,6 +248,7 @@ void Session::teardown() {
   views_.clear();
   spare_renderer_.reset();
   field_.reset();
+  shadow_field_.reset();
   gpu_scene_.reset();
   env_.context->collect_garbage();
   env_.metrics->sessions.fetch_sub(1);
@@ -289,16 +298,28 @@ Status Session::load(const SceneRequest& request) {
     DDGI_TRY(apply_field_assignments(params, options_.field_assignments));
     DDGI_ASSIGN_OR_RETURN(
         field, IrradianceField::create(context, *gpu, params, context.default_backend()));
+    // As ddgi-render does: fast convergence first, then the configured hysteresis.
     if (request.warmup_updates > 0) {
-      auto warm = field->update(request.warmup_updates, options_.direct_mode);
-      if (!warm.ok()) return warm.error();
+      DDGI_TRY(field->warm_up(request.warmup_updates, options_.direct_mode));
       env_.metrics->field_updates.fetch_add(request.warmup_updates);
+    }
+  }
+  std::unique_ptr<ShadowField> shadow_field;
+  if (uses_shadow_field(options_.direct_mode)) {
+    ShadowFieldParams params = fit_shadow_grid(scene->world_bounds());
+    DDGI_TRY(apply_shadow_assignments(params, options_.shadow_assignments));
+    DDGI_ASSIGN_OR_RETURN(shadow_field,
+                          ShadowField::create(context, *gpu, params, context.default_backend()));
+    if (request.warmup_updates > 0) {
+      auto warm = shadow_field->update(request.warmup_updates, options_.direct_mode);
+      if (!warm.ok()) return warm.error();
     }
   }
   // Renderers point at the old scene and field: drop them before those go.
   for (auto& [view_id, view] : views_) view.renderer.reset();
   spare_renderer_.reset();
   field_ = std::move(field);
+  shadow_field_ = std::move(shadow_field);
   gpu_scene_ = std::move(gpu);
   scene_label_ = request.label;
   warnings_ = scene->warnings;
@@ -349,7 +370,8 @@ void Session::fill_info(v1::SessionInfo* info) const {
   to_proto(default_camera_, info->mutable_default_camera());
   if (!gpu_scene_) return;
   info->set_triangles(gpu_scene_->triangle_count());
-  info->set_gpu_bytes(gpu_scene_->gpu_bytes() + (field_ ? field_->gpu_bytes() : 0));
+  info->set_gpu_bytes(gpu_scene_->gpu_bytes() + (field_ ? field_->gpu_bytes() : 0) +
+                      (shadow_field_ ? shadow_field_->gpu_bytes() : 0));
   const auto& instances = gpu_scene_->scene().instances;
   for (size_t i = 0; i < instances.size(); ++i) {
     auto* instance = info->add_instances();
@@ -404,8 +426,7 @@ Result<Session::ViewState*> Session::add_view(ViewConfig config,
   if (view.one_off && spare_renderer_) {
     view.renderer = std::move(spare_renderer_);
   } else {
-    DDGI_ASSIGN_OR_RETURN(view.renderer, Renderer::create(*env_.context, *gpu_scene_, field_.get(),
-                                                          env_.context->default_backend()));
+    DDGI_ASSIGN_OR_RETURN(view.renderer, make_renderer());
   }
   if (!view.one_off) env_.metrics->views.fetch_add(1);
   const std::string id = view.id;
@@ -607,6 +628,7 @@ void Session::set_instance_transform(uint32_t index, glm::mat4 transform, v1::In
 
 void Session::fill_field(v1::FieldParams* params) const {
   params->Clear();
+  params->set_field(v1::FIELD_KIND_IRRADIANCE);
   for (const FieldParamInfo& info : field_param_infos()) {
     auto value = get_field_param(field_->params(), info.name);
     auto* p = params->add_params();
@@ -619,37 +641,77 @@ void Session::fill_field(v1::FieldParams* params) const {
   params->set_command_seq(applying_seq_);
 }
 
-void Session::get_field_params(v1::FieldParams* reply, Completion done) {
+void Session::fill_shadow_field(v1::FieldParams* params) const {
+  params->Clear();
+  params->set_field(v1::FIELD_KIND_SHADOW);
+  for (const ShadowParamInfo& info : shadow_param_infos()) {
+    auto value = get_shadow_param(shadow_field_->params(), info.name);
+    auto* p = params->add_params();
+    p->set_name(info.name);
+    p->set_value(value.ok() ? value.value() : "");
+  }
+  params->set_probes(probe_count(shadow_field_->params()));
+  params->set_gpu_bytes(shadow_field_->gpu_bytes());
+  params->set_updates(shadow_field_->updates());
+  params->set_command_seq(applying_seq_);
+}
+
+Status Session::require_field(v1::FieldKind kind) const {
+  if (kind == v1::FIELD_KIND_SHADOW && !shadow_field_) {
+    return failed_precondition("session " + id_ +
+                               " has no shadow field (create it with direct_mode SHADOW_FIELD "
+                               "or AMBIENT_OCCLUSION)");
+  }
+  if (kind != v1::FIELD_KIND_SHADOW && !field_) {
+    return failed_precondition("session " + id_ +
+                               " runs without GI (CreateSession gi=false): it has no field");
+  }
+  return ok_status();
+}
+
+void Session::get_field_params(v1::FieldKind kind, v1::FieldParams* reply, Completion done) {
   enqueue_sync(
       false,
-      [this, reply]() -> Status {
-        if (!field_) {
-          return failed_precondition("session " + id_ +
-                                     " runs without GI (CreateSession gi=false): it has no field");
+      [this, kind, reply]() -> Status {
+        DDGI_TRY(require_field(kind));
+        if (kind == v1::FIELD_KIND_SHADOW) {
+          fill_shadow_field(reply);
+        } else {
+          fill_field(reply);
         }
-        fill_field(reply);
         return ok_status();
       },
       std::move(done));
 }
 
-void Session::set_field_params(std::vector<std::string> assignments, v1::FieldParams* reply,
-                               Completion done) {
+void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assignments,
+                               v1::FieldParams* reply, Completion done) {
   enqueue_sync(
       true,
-      [this, assignments, reply]() -> Status {
-        if (!field_) {
-          return failed_precondition("session " + id_ +
-                                     " runs without GI (CreateSession gi=false): it has no field");
+      [this, kind, assignments, reply]() -> Status {
+        DDGI_TRY(require_field(kind));
+        if (kind == v1::FIELD_KIND_SHADOW) {
+          ShadowFieldParams params = shadow_field_->params();
+          DDGI_TRY(apply_shadow_assignments(params, assignments));
+          DDGI_TRY(shadow_field_->set_params(params));
+          fill_shadow_field(reply);
+        } else {
+          IrradianceFieldParams params = field_->params();
+          DDGI_TRY(apply_field_assignments(params, assignments));
+          DDGI_TRY(field_->set_params(params));
+          fill_field(reply);
         }
-        IrradianceFieldParams params = field_->params();
-        DDGI_TRY(apply_field_assignments(params, assignments));
-        DDGI_TRY(field_->set_params(params));
-        fill_field(reply);
-        LOG_INFO << "field parameters changed session=" << id_ << " count=" << assignments.size();
+        LOG_INFO << "field parameters changed session=" << id_
+                 << " field=" << (kind == v1::FIELD_KIND_SHADOW ? "shadow" : "irradiance")
+                 << " count=" << assignments.size();
         return ok_status();
       },
       std::move(done));
+}
+
+Result<std::unique_ptr<Renderer>> Session::make_renderer() {
+  return Renderer::create(*env_.context, *gpu_scene_, field_.get(), env_.context->default_backend(),
+                          shadow_field_.get());
 }
 
 // ---- Frames, queries, atlases
@@ -741,21 +803,13 @@ void Session::dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone d
       false,
       [this, kind, format, shared_done](Completion) {
         auto result = [&]() -> Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>> {
-          if (!field_) {
-            return failed_precondition(
-                "session " + id_ + " runs without GI (CreateSession gi=false): it has no field");
-          }
-          if (kind == v1::ATLAS_KIND_SHADOW || kind == v1::ATLAS_KIND_PROBE_STATES) {
-            return failed_precondition(std::string("this server's fields keep no ") +
-                                       (kind == v1::ATLAS_KIND_SHADOW ? "shadow" : "probe-state") +
-                                       " atlas; IRRADIANCE and DISTANCE can be dumped");
-          }
-          auto image = kind == v1::ATLAS_KIND_IRRADIANCE ? field_->read_irradiance_atlas()
-                                                         : field_->read_distance_atlas();
-          if (!image.ok()) return image.error();
-          v1::AtlasMetadata metadata = atlas_metadata(*field_, kind, format, *image);
-          DDGI_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, encode_atlas(*image, metadata));
-          return std::make_pair(std::move(metadata), std::move(bytes));
+          const bool shadow_kind =
+              kind == v1::ATLAS_KIND_SHADOW || kind == v1::ATLAS_KIND_SHADOW_MOMENTS;
+          DDGI_TRY(require_field(shadow_kind ? v1::FIELD_KIND_SHADOW : v1::FIELD_KIND_IRRADIANCE));
+          DDGI_ASSIGN_OR_RETURN(auto dump, read_atlas(*env_.context, field_.get(),
+                                                      shadow_field_.get(), kind, format));
+          DDGI_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, encode_atlas(dump.second, dump.first));
+          return std::make_pair(std::move(dump.first), std::move(bytes));
         }();
         (*shared_done)(std::move(result));
       },

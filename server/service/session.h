@@ -19,6 +19,7 @@
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
 #include "gi/irradiance_field.h"
+#include "gi/shadow_field.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -46,7 +47,13 @@ struct SessionOptions {
   bool gi = true;
   DirectMode direct_mode = DirectMode::kTracedShadows;
   std::vector<std::string> field_assignments;  // "name=value", applied over the scene's defaults
+  // Shadow-field "name=value" over the grid fitted to the scene; the field exists only in the
+  // shadow-field and AO direct modes.
+  std::vector<std::string> shadow_assignments;
 };
+
+// Whether `mode` samples a shadow field.
+bool uses_shadow_field(DirectMode mode);
 
 // What every session shares with the rest of the server.
 struct SessionEnv {
@@ -83,9 +90,9 @@ class Session : public std::enable_shared_from_this<Session> {
   void remove_light(uint32_t light_id, v1::LightReply* reply, Completion done);
   void set_instance_transform(uint32_t index, glm::mat4 transform, v1::InstanceReply* reply,
                               Completion done);
-  void get_field_params(v1::FieldParams* reply, Completion done);
-  void set_field_params(std::vector<std::string> assignments, v1::FieldParams* reply,
-                        Completion done);
+  void get_field_params(v1::FieldKind kind, v1::FieldParams* reply, Completion done);
+  void set_field_params(v1::FieldKind kind, std::vector<std::string> assignments,
+                        v1::FieldParams* reply, Completion done);
   // An existing view (view_id) or a one-off view made of config and camera.
   void render_frame(std::string view_id, ViewConfig config, std::optional<v1::Camera> camera,
                     FrameWaiter waiter);
@@ -143,6 +150,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void fill_info(v1::SessionInfo* info) const;
   void fill_view(const ViewState& view, v1::ViewInfo* info) const;
   void fill_field(v1::FieldParams* params) const;
+  void fill_shadow_field(v1::FieldParams* params) const;
+  // FAILED_PRECONDITION when the session lacks the field of `kind`.
+  Status require_field(v1::FieldKind kind) const;
+  Result<std::unique_ptr<Renderer>> make_renderer();
   void fill_light(const LightSlot& slot, v1::LightEntry* entry) const;
   void fail_view(ViewState& view, const Error& error);
   std::string new_view_id();
@@ -168,6 +179,7 @@ class Session : public std::enable_shared_from_this<Session> {
   Camera default_camera_;
   std::unique_ptr<GpuScene> gpu_scene_;
   std::unique_ptr<IrradianceField> field_;
+  std::unique_ptr<ShadowField> shadow_field_;
   std::vector<LightSlot> lights_;
   uint32_t next_light_id_ = 0;
   std::map<std::string, ViewState> views_;

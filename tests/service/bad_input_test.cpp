@@ -271,6 +271,28 @@ TEST_F(BadInputTest, FieldParametersOutOfRange) {
   expect_error(set_params({{"no_such_parameter", "1"}}), grpc::StatusCode::INVALID_ARGUMENT,
                {"unknown field parameter 'no_such_parameter'"});
   // Nothing changed: a partial update with one bad value applies none.
+  // Shadow-field parameters: this session has no shadow field; its names are checked anyway.
+  v1::SetFieldParamsRequest shadow;
+  shadow.set_session_id(session_);
+  shadow.set_field(v1::FIELD_KIND_SHADOW);
+  auto* param = shadow.add_params();
+  param->set_name("hysteresis");
+  param->set_value("0.5");
+  v1::FieldParams ignored;
+  auto shadow_ctx = context();
+  expect_error(stub_->SetFieldParams(shadow_ctx.get(), shadow, &ignored),
+               grpc::StatusCode::FAILED_PRECONDITION, {"has no shadow field"});
+  param->set_name("no_such_shadow_parameter");
+  shadow_ctx = context();
+  expect_error(stub_->SetFieldParams(shadow_ctx.get(), shadow, &ignored),
+               grpc::StatusCode::INVALID_ARGUMENT, {"no_such_shadow_parameter"});
+  v1::CreateSessionRequest unshadowed = small_session_request("cornell_box", 0);
+  *unshadowed.add_shadow_field_params() = *param;
+  v1::SessionInfo info;
+  shadow_ctx = context();
+  expect_error(stub_->CreateSession(shadow_ctx.get(), unshadowed, &info),
+               grpc::StatusCode::INVALID_ARGUMENT, {"shadow_field_params need direct_mode"});
+
   v1::FieldParams reply;
   expect_error(set_params({{"hysteresis", "0.5"}, {"irradiance_gamma", "99"}}),
                grpc::StatusCode::INVALID_ARGUMENT, {"irradiance_gamma"});

@@ -65,6 +65,9 @@ expect "$work/atlas.json" '"ATLAS_KIND_IRRADIANCE"'
 c atlas --session "$session" --kind distance --format raw --out "$work/dist.raw" \
   --convert "$work/dist.tif" >/dev/null
 [ -s "$work/dist.tif" ] || fail "raw atlas conversion wrote nothing"
+c atlas --session "$session" --kind probe-states --format raw --out "$work/states.raw" \
+  >"$work/states.json"
+expect "$work/states.json" '"ATLAS_KIND_PROBE_STATES"' 
 c query --session "$session" --points '0,0.1,0,0,1,0;0.3,0.5,0,-1,0,0' >"$work/query.json"
 expect "$work/query.json" '"irradiance"'
 

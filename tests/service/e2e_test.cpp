@@ -178,7 +178,7 @@ TEST_F(E2eTest, StreamedFrameMatchesRenderer) {
     ASSERT_TRUE(gpu_scene.ok());
     auto field = IrradianceField::create(gpu, **gpu_scene, params, gpu.default_backend());
     ASSERT_TRUE(field.ok());
-    ASSERT_TRUE((*field)->update(kWarmup, DirectMode::kTracedShadows).ok());
+    ASSERT_TRUE((*field)->warm_up(kWarmup, DirectMode::kTracedShadows).ok());
     auto renderer = Renderer::create(gpu, **gpu_scene, field->get(), gpu.default_backend());
     ASSERT_TRUE(renderer.ok());
     FrameSettings settings;
@@ -348,17 +348,92 @@ TEST_F(E2eTest, AtlasDumpExrAndRaw) {
       }
     }
   }
+  // Probe states: one texel per probe.
+  v1::DumpAtlasRequest states;
+  states.set_session_id(session);
+  states.set_kind(v1::ATLAS_KIND_PROBE_STATES);
+  states.set_format(v1::ATLAS_FORMAT_RAW_F32);
+  auto ctx = context();
+  auto reader = stub_->DumpAtlas(ctx.get(), states);
+  v1::AtlasChunk chunk;
+  ASSERT_TRUE(reader->Read(&chunk));
+  EXPECT_EQ(chunk.metadata().width(), 2u);
+  EXPECT_EQ(chunk.metadata().height(), 4u);
+  EXPECT_EQ(chunk.metadata().channels(3), "state");
+  EXPECT_EQ(chunk.metadata().total_bytes(), 8u * 4u * 4u);
+  while (reader->Read(&chunk)) {
+  }
+  EXPECT_TRUE(reader->Finish().ok());
+  // This session has no shadow field.
   v1::DumpAtlasRequest shadow;
   shadow.set_session_id(session);
   shadow.set_kind(v1::ATLAS_KIND_SHADOW);
-  auto ctx = context();
-  auto reader = stub_->DumpAtlas(ctx.get(), shadow);
-  v1::AtlasChunk chunk;
+  ctx = context();
+  reader = stub_->DumpAtlas(ctx.get(), shadow);
   EXPECT_FALSE(reader->Read(&chunk));
   const grpc::Status status = reader->Finish();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
-  EXPECT_NE(status.error_message().find("no shadow atlas"), std::string::npos)
+  EXPECT_NE(status.error_message().find("has no shadow field"), std::string::npos)
       << status.error_message();
+}
+
+// A session in the shadow-field direct mode: frames include the shadow field's update, its
+// parameters are read and changed through the same RPCs with field=SHADOW, its atlases dump.
+TEST_F(E2eTest, ShadowFieldSession) {
+  v1::CreateSessionRequest request = small_session_request("cornell_box", 2);
+  request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
+  for (auto [name, value] : {std::pair{"counts", "3,3,3"}, {"rays_per_probe", "16"}}) {
+    auto* p = request.add_shadow_field_params();
+    p->set_name(name);
+    p->set_value(value);
+  }
+  v1::SessionInfo info;
+  auto ctx = context();
+  const grpc::Status created = stub_->CreateSession(ctx.get(), request, &info);
+  ASSERT_TRUE(created.ok()) << created.error_message();
+  v1::Frame frame;
+  ASSERT_TRUE(render(info.session_id(), 32, 24, &frame).ok());
+  bool shadow_pass = false;
+  for (const auto& pass : frame.passes()) shadow_pass |= pass.name().rfind("shadow ", 0) == 0;
+  EXPECT_TRUE(shadow_pass) << "no shadow-field pass in the frame";
+  EXPECT_GT(mean_level(decode(frame)), 1.0);
+
+  v1::SetFieldParamsRequest set;
+  set.set_session_id(info.session_id());
+  set.set_field(v1::FIELD_KIND_SHADOW);
+  auto* p = set.add_params();
+  p->set_name("hysteresis");
+  p->set_value("0.5");
+  v1::FieldParams params;
+  ctx = context();
+  ASSERT_TRUE(stub_->SetFieldParams(ctx.get(), set, &params).ok());
+  EXPECT_EQ(params.field(), v1::FIELD_KIND_SHADOW);
+  EXPECT_EQ(params.probes(), 27u);
+  bool found = false;
+  for (const auto& param : params.params()) {
+    if (param.name() == "hysteresis") {
+      found = true;
+      EXPECT_EQ(param.value(), "0.5");
+    }
+  }
+  EXPECT_TRUE(found);
+
+  for (auto kind : {v1::ATLAS_KIND_SHADOW, v1::ATLAS_KIND_SHADOW_MOMENTS}) {
+    v1::DumpAtlasRequest dump;
+    dump.set_session_id(info.session_id());
+    dump.set_kind(kind);
+    ctx = context();
+    auto reader = stub_->DumpAtlas(ctx.get(), dump);
+    v1::AtlasChunk chunk;
+    ASSERT_TRUE(reader->Read(&chunk));
+    EXPECT_EQ(chunk.metadata().probe_counts_x(), 3);
+    EXPECT_EQ(chunk.metadata().channels_size(), 4);
+    uint64_t bytes = 0;
+    while (reader->Read(&chunk)) bytes += chunk.data().size();
+    EXPECT_TRUE(reader->Finish().ok());
+    EXPECT_EQ(bytes, chunk.metadata().total_bytes() ? chunk.metadata().total_bytes() : bytes);
+    EXPECT_GT(bytes, 0u);
+  }
 }
 
 TEST_F(E2eTest, QueryIrradianceBatch) {

@@ -85,13 +85,14 @@ TEST_F(SlowReaderTest, StalledClientCostsNothingAndOthersKeepTheirRate) {
   const uint64_t dropped_during = server().metrics().frames_dropped.load() - dropped_before;
 
   // The slow client reads again: first what the transport held before it stalled (a window's
-  // worth, written before the drops), then current frames that report how many it missed.
+  // worth, and the write that was in flight, stamped with the drop count of its start), then
+  // the newest frame, which reports how many it missed.
   v1::Frame resumed;
   uint64_t newest_dropped = 0;
   int buffered = 0;
-  for (int i = 0; i < 200 && newest_dropped == 0 && slow_reader->Read(&resumed); ++i) {
+  for (int i = 0; i < 200 && newest_dropped <= 5 && slow_reader->Read(&resumed); ++i) {
     newest_dropped = resumed.frames_dropped();
-    buffered += newest_dropped == 0 ? 1 : 0;
+    buffered += newest_dropped <= 5 ? 1 : 0;
   }
   std::printf(
       "slow reader: %.1f s stall, %llu-byte frames, %llu frames dropped, %d frames held "
