@@ -64,6 +64,10 @@ class ShadowField {
 
   // Lights the atlas holds now: min(scene lights, max_lights).
   uint32_t kept_lights() const;
+  // The persistent atlases (RGBA32F, GENERAL layout), for dumps (the service's DumpAtlas).
+  const vk::Image& visibility_atlas() const { return visibility_; }
+  const vk::Image& moments_atlas() const { return moments_; }
+  const ShadowAtlasLayout& atlas_layout() const { return layout_; }
   VkDescriptorSetLayout sampling_layout() const { return sampling_layout_.handle(); }
   VkDescriptorSet sampling_set() const { return sampling_set_; }
   uint64_t gpu_bytes() const { return gpu_bytes_; }
