@@ -122,7 +122,8 @@ const std::vector<Entry>& entries() {
                   &P::weight_crush_threshold),
       uint_entry("relocation_iterations", "relocation passes, [0, 16]; 0: no relocation",
                  &P::relocation_iterations),
-      {{"classification", "true/false: Off/Sleeping/Vigilant/Awake states, trace active probes only"},
+      {{"classification",
+        "true/false: Off/Sleeping/Vigilant/Awake states, trace active probes only"},
        [](P& p, const std::string& text) -> Status {
          if (text != "true" && text != "false") {
            return invalid_argument("classification must be true or false (got '" + text + "')");
@@ -145,6 +146,9 @@ const std::vector<Entry>& entries() {
          return ok_status();
        },
        [](const P& p) { return std::to_string(p.max_rays_per_update); }},
+      uint_entry("emitter_samples",
+                 "emitter samples per pixel and probe-ray hit, [0, 64]; 0: emitters via the field",
+                 &P::emitter_samples),
       uint_entry("seed", "seed of the random ray rotations", &P::seed),
   };
   return table;

@@ -64,14 +64,15 @@ Status validate(const IrradianceFieldParams& p) {
   DDGI_TRY(in_range("energy_conservation", p.energy_conservation, 0.0f, 1.0f));
   DDGI_TRY(in_range("weight_crush_threshold", p.weight_crush_threshold, 0.0f, 1.0f));
   DDGI_TRY(in_range("relocation_iterations", p.relocation_iterations, 0u, 16u));
+  DDGI_TRY(in_range("emitter_samples", p.emitter_samples, 0u, 64u));
   DDGI_TRY(in_range("probe_offset_limit", p.probe_offset_limit, 0.0f, 0.49f));
   DDGI_TRY(in_range("min_frontface_distance", p.min_frontface_distance, 0.0f, 0.5f));
   DDGI_TRY(in_range("backface_threshold", p.backface_threshold, 1e-6f, 1.0f));
   if ((p.relocation_iterations > 0 || p.classification) && p.fixed_rays < 8) {
-    return invalid_argument(
-        "relocation and classification need fixed_rays >= 8 (got " +
-        std::to_string(p.fixed_rays) + "); set relocation_iterations=0 and classification=false "
-        "to run without fixed rays");
+    return invalid_argument("relocation and classification need fixed_rays >= 8 (got " +
+                            std::to_string(p.fixed_rays) +
+                            "); set relocation_iterations=0 and classification=false "
+                            "to run without fixed rays");
   }
   const uint64_t rays_per_probe_total = p.rays_per_probe + p.fixed_rays;
   if (p.max_rays_per_update != 0 && p.max_rays_per_update < rays_per_probe_total) {

@@ -100,6 +100,15 @@ struct IrradianceFieldParams {
   // rays. Shadow rays are not counted.
   uint64_t max_rays_per_update = 0;
 
+  // --- Emitters ---------------------------------------------------------------------------------
+  // Light from emissive surfaces, sampled directly instead of carried by the field: each pixel
+  // and each probe-ray hit takes this many samples on the emitters (area x luminance, one
+  // shadow ray each), and probe rays no longer carry the emission they see (it would count
+  // twice). 0: off, emitter light reaches surfaces through the field (probe rays hit the
+  // emitters, the 2021 paper's way). [0, 64]. Off by default: the option the field is measured
+  // against (docs/results/field-quality.md); it is noisier per pixel but sharp.
+  uint32_t emitter_samples = 0;
+
   // --- Determinism ----------------------------------------------------------------------------
   // Seed of the per-update random ray rotation: the same seed gives the same field.
   uint32_t seed = 1;

@@ -391,6 +391,7 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.min_frontface_distance = params_.min_frontface_distance *
                              std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
   c.backface_threshold = params_.backface_threshold;
+  c.emitter_samples = params_.emitter_samples;
   return c;
 }
 

@@ -203,6 +203,11 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   direct.light_samples = settings.light_samples;
   // Without an irradiance field nothing else brings the sky: the AO mode adds it.
   direct.flags = field_ ? 0u : gpu::kDirectAddSky;
+  // The field decides where emitter light comes from; the frame must agree or count it twice.
+  if (field_ && field_->params().emitter_samples > 0) {
+    direct.flags |= gpu::kDirectSampleEmitters;
+    direct.emitter_samples = field_->params().emitter_samples;
+  }
   const gpu::TonemapConstants tonemap{settings.width, settings.height,
                                       static_cast<uint32_t>(settings.tonemap), settings.exposure};
   gpu::IndirectConstants indirect{};

@@ -5,6 +5,7 @@
 // bounces). Back faces carry nothing (2021 paper, sec. 4.1); misses carry the environment.
 #include "gi/shadow_direct.glsl"
 #include "common/field_update.glsl"
+#include "common/emitter_direct.glsl"
 #include "shared/frame_data.h"
 
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) buffer Rays { ProbeRay rays[]; };
@@ -34,7 +35,13 @@ void main() {
     const vec3 direct = direct_light(s, field.direct_mode, 1u, -direction, false, rng);
     const vec3 indirect = s.albedo * field.energy_conservation *
                           sample_irradiance(s.position, s.normal, -direction);
-    radiance = s.emission + direct + indirect;
+    if (field.emitter_samples > 0u) {
+      // Emitter light reaches surfaces by sampling (here and per pixel), not through the field:
+      // what probes see of an emitter would count it twice.
+      radiance = direct + emitter_direct(s, field.emitter_samples, rng) + indirect;
+    } else {
+      radiance = s.emission + direct + indirect;
+    }
   }
   const float t = (ray.flags & kRayHit) != 0u ? ray.distance : field.max_ray_distance;
   radiance *= glass_transmittance(origin, direction, 0.0, t);

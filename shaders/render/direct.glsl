@@ -4,6 +4,7 @@
 // rays, the shadow field, none), plus what the surface emits. Writes linear HDR radiance.
 // Compiled a second time as direct_shadow_field with DDGI_SHADOW_FIELD_SET=2 (the shadow field).
 #include "gi/shadow_direct.glsl"
+#include "common/emitter_direct.glsl"
 #include "common/gbuffer.glsl"
 
 layout(push_constant, scalar) uniform Push { DirectConstants pc; };
@@ -30,8 +31,11 @@ void main() {
     s.front_face = (flags & kGBufferFrontFace) != 0u;
     Rng rng = rng_seed(pixel.x, pixel.y, 0x9e3779b9u);
     const vec3 to_camera = safe_normalize(pc.camera_position - s.position, s.normal);
-    const vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,
-                                     (pc.flags & kDirectAddSky) != 0u, rng);
+    vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,
+                               (pc.flags & kDirectAddSky) != 0u, rng);
+    if ((pc.flags & kDirectSampleEmitters) != 0u) {
+      direct += emitter_direct(s, pc.emitter_samples, rng);
+    }
     if (pc.view == kViewAlbedo) {
       result = s.albedo;
     } else if (pc.view == kViewNormal) {

@@ -93,6 +93,10 @@ struct FieldConstants {
   float probe_offset_limit;       // relocation keeps |offset| <= limit x spacing per axis
   float min_frontface_distance;   // relocation keeps probes this far from front faces
   float backface_threshold;       // more back-face hits than this fraction: inside geometry
+  uint emitter_samples;           // > 0: probe rays sample emitters and carry no emission
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // What the relocate/classify kernel does this dispatch (FieldDispatch::mode).

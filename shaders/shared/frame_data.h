@@ -37,6 +37,8 @@ DDGI_CONST uint kDirectAmbientOcclusion = 3u;  // shadow field + the sky through
 
 // DirectConstants::flags
 DDGI_CONST uint kDirectAddSky = 1u;  // AO mode: add the sky term (no irradiance field brings it)
+// Add emitter light by sampling emissive triangles (the field then carries no emission).
+DDGI_CONST uint kDirectSampleEmitters = 2u;
 
 // What the final image shows (DirectConstants::view).
 DDGI_CONST uint kViewFull = 0u;
@@ -66,7 +68,7 @@ struct DirectConstants {
   vec3 camera_position;
   uint light_samples;  // shadow rays per spherical light in the traced mode
   uint flags;          // kDirect* flags
-  uint pad0;
+  uint emitter_samples;  // kDirectSampleEmitters: emitter samples per pixel
   uint pad1;
   uint pad2;
 };
