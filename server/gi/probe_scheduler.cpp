@@ -38,10 +38,14 @@ void ProbeScheduler::set_states(const std::vector<uint8_t>& states) {
 ProbeStateCounts ProbeScheduler::counts() const {
   ProbeStateCounts c;
   for (uint8_t s : states_) {
-    if (s == gpu::kProbeVigilant) ++c.vigilant;
-    else if (s == gpu::kProbeAwake) ++c.awake;
-    else if (s == gpu::kProbeSleeping) ++c.sleeping;
-    else ++c.off;
+    if (s == gpu::kProbeVigilant)
+      ++c.vigilant;
+    else if (s == gpu::kProbeAwake)
+      ++c.awake;
+    else if (s == gpu::kProbeSleeping)
+      ++c.sleeping;
+    else
+      ++c.off;
   }
   return c;
 }

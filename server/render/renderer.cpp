@@ -276,8 +276,10 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
     timer_.begin_pass(cmd, "readback");
-    VkBufferCopy radiance_copy{0, 0, radiance_.size()};
-    vkCmdCopyBuffer(cmd, radiance_.handle(), radiance_readback_.handle(), 1, &radiance_copy);
+    if (settings.read_radiance) {
+      VkBufferCopy radiance_copy{0, 0, radiance_.size()};
+      vkCmdCopyBuffer(cmd, radiance_.handle(), radiance_readback_.handle(), 1, &radiance_copy);
+    }
     VkBufferCopy ldr_copy{0, 0, ldr_.size()};
     vkCmdCopyBuffer(cmd, ldr_.handle(), ldr_readback_.handle(), 1, &ldr_copy);
     timer_.end_pass(cmd);
@@ -287,8 +289,10 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   result.width = settings.width;
   result.height = settings.height;
   const size_t pixels = size_t(settings.width) * settings.height;
-  result.radiance.resize(pixels * 4);
-  std::memcpy(result.radiance.data(), radiance_readback_.mapped(), pixels * 16);
+  if (settings.read_radiance) {
+    result.radiance.resize(pixels * 4);
+    std::memcpy(result.radiance.data(), radiance_readback_.mapped(), pixels * 16);
+  }
   result.ldr.resize(pixels * 4);
   std::memcpy(result.ldr.data(), ldr_readback_.mapped(), pixels * 4);
   DDGI_ASSIGN_OR_RETURN(result.pass_times, timer_.read());

@@ -35,6 +35,9 @@ struct FrameSettings {
   // Irradiance-field updates recorded before this frame's passes, in [0, 64]. 1: one update
   // per frame, the real-time loop.
   uint32_t field_updates = 1;
+  // Copy the linear HDR image back (FrameResult::radiance). A stream that only encodes the
+  // 8-bit image turns this off: at 1920x1080 the HDR copy is 33 MB per frame.
+  bool read_radiance = true;
   // Shadow-field updates recorded before this frame's passes when the direct mode uses the
   // shadow field, in [0, 64]. 1: the real-time loop.
   uint32_t shadow_field_updates = 1;
@@ -47,7 +50,7 @@ Status validate(const FrameSettings& settings);
 struct FrameResult {
   uint32_t width = 0;
   uint32_t height = 0;
-  std::vector<float> radiance;  // linear HDR, RGBA float per pixel, row 0 = top
+  std::vector<float> radiance;  // linear HDR, RGBA float per pixel, row 0 = top (if read)
   std::vector<uint8_t> ldr;     // tone-mapped sRGB RGBA8 per pixel, row 0 = top
   std::vector<vk::PassTime> pass_times;
   uint64_t frame_index = 0;

@@ -162,6 +162,7 @@ void Session::produce_frame() {
     settings.exposure = view.config.exposure;
     settings.field_updates = field_due && field_ ? 1 : 0;
     settings.shadow_field_updates = field_due && shadow_field_ ? 1 : 0;
+    settings.read_radiance = false;  // views stream JPEG: only the 8-bit image is encoded
     const auto start = std::chrono::steady_clock::now();
     Result<FrameResult> frame = view.renderer->render(settings);
     const double seconds =

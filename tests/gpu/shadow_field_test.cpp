@@ -69,6 +69,17 @@ TEST_F(ShadowFieldTest, ConvergesToSoftShadowsOfASphericalLight) {
               error);
   EXPECT_GT(penumbra, 20);
   EXPECT_LT(error, kConvergedError);
+
+  // Sharpening (thesis Fig. 7.10) raises the sampled visibility to a power; the history stays.
+  ShadowFieldParams sharp = s.field->params();
+  sharp.sharpening = 4.0f;
+  ASSERT_TRUE(s.field->set_params(sharp).ok());
+  auto sharpened = s.field->query(floor_points());
+  ASSERT_TRUE(sharpened.ok()) << sharpened.error().message;
+  for (size_t i = 0; i < answers->size(); ++i) {
+    const float v = (*answers)[i].field_visibility[0];
+    EXPECT_NEAR((*sharpened)[i].field_visibility[0], v * v * v * v, 1e-5f);
+  }
 }
 
 // The light jumps 3 m; with hysteresis 0.9 the field forgets 10% of its history per update, so
