@@ -30,10 +30,12 @@ endfunction()
 
 # A tracing kernel is written once and compiled twice: as a compute shader with ray queries
 # and as a ray-generation shader for ray-tracing pipelines.
+# ddgi_compile_tracing_kernel(<out-var> <name> <source> [DEFINES A=1 ...])
 function(ddgi_compile_tracing_kernel out_var name source)
+  cmake_parse_arguments(ARG "" "" "DEFINES" ${ARGN})
   ddgi_compile_shader(${out_var} SOURCE ${source} STAGE comp OUTPUT ${name}.query.comp.spv
-                      DEFINES DDGI_BACKEND_QUERY=1)
+                      DEFINES DDGI_BACKEND_QUERY=1 ${ARG_DEFINES})
   ddgi_compile_shader(${out_var} SOURCE ${source} STAGE rgen OUTPUT ${name}.pipeline.rgen.spv
-                      DEFINES DDGI_BACKEND_PIPELINE=1)
+                      DEFINES DDGI_BACKEND_PIPELINE=1 ${ARG_DEFINES})
   set(${out_var} ${${out_var}} PARENT_SCOPE)
 endfunction()

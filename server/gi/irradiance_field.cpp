@@ -56,9 +56,9 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
 
 Result<std::unique_ptr<IrradianceField>> IrradianceField::create(
     vk::Context& context, GpuScene& scene, const IrradianceFieldParams& params,
-    vk::TraceBackend backend) {
+    vk::TraceBackend backend, const ShadowField* shadow_field) {
   DDGI_TRY(validate(params));
-  std::unique_ptr<IrradianceField> field(new IrradianceField(context, scene));
+  std::unique_ptr<IrradianceField> field(new IrradianceField(context, scene, shadow_field));
   field->params_ = params;
   DDGI_TRY(field->create_layouts_and_kernels(backend));
   DDGI_TRY(field->create_resources());
@@ -99,6 +99,15 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   };
   DDGI_ASSIGN_OR_RETURN(trace_, kernel("field_trace", true));
   DDGI_ASSIGN_OR_RETURN(shade_, kernel("field_shade", true));
+  if (shadow_field_) {
+    std::vector<VkDescriptorSetLayout> layouts = update_layouts;
+    layouts.push_back(shadow_field_->sampling_layout());
+    DDGI_ASSIGN_OR_RETURN(
+        shade_with_shadow_field_,
+        vk::Kernel::create(context_,
+                           {"field_shade_shadow_field", true, layouts, push, kLinearWorkgroup},
+                           backend));
+  }
   DDGI_ASSIGN_OR_RETURN(blend_irradiance_, kernel("field_blend_irradiance", false));
   DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
   DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
@@ -223,7 +232,8 @@ Status IrradianceField::write_probe_list(const std::vector<uint32_t>& probes) {
 
 void IrradianceField::record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel,
                                     uint32_t list_start, uint32_t list_size, uint32_t probes,
-                                    uint32_t per_probe, uint32_t first_ray, uint32_t mode) {
+                                    uint32_t per_probe, uint32_t first_ray, uint32_t mode,
+                                    VkDescriptorSet shadow_set) {
   const uint64_t count = uint64_t(probes) * per_probe;
   const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
   const gpu::FieldDispatch push{static_cast<uint32_t>(count),
@@ -234,8 +244,8 @@ void IrradianceField::record_linear(VkCommandBuffer cmd, const vk::Kernel& kerne
                                 first_ray,
                                 mode,
                                 0};
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
-  kernel.dispatch(cmd, sets, &push, d.size);
+  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_, shadow_set};
+  kernel.dispatch(cmd, std::span<const VkDescriptorSet>(sets, shadow_set ? 4 : 3), &push, d.size);
   vk::barrier_all(cmd);
 }
 
@@ -396,7 +406,15 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
 }
 
 uint64_t IrradianceField::rays_per_update() const {
-  return last_update_probe_rays_ + last_update_shaded_rays_ * scene_.scene().lights.size();
+  return last_update_probe_rays_ + last_update_shaded_rays_ * last_update_traced_lights_;
+}
+
+uint32_t IrradianceField::traced_lights(DirectMode direct_mode) const {
+  const uint32_t lights = static_cast<uint32_t>(scene_.scene().lights.size());
+  if (direct_mode == DirectMode::kUnshadowed) return 0;
+  if (!uses_shadow_field(direct_mode) || !shadow_field_) return lights;
+  if (shadow_field_->params().overflow != ShadowOverflow::kTracedShadows) return 0;
+  return lights - std::min(lights, shadow_field_->kept_lights());
 }
 
 void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
@@ -413,18 +431,26 @@ void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
   const ProbeScheduler::Window window = scheduler_.next_window(budget_probes);
   last_update_probe_rays_ = uint64_t(window.count) * total_rays;
   last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
+  last_update_traced_lights_ = traced_lights(direct_mode);
 
   const gpu::FieldConstants c = constants(direct_mode);
   vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
   vk::barrier_all(cmd);
   const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
-  auto run = [&](const vk::Kernel& kernel, const char* pass, uint32_t per_probe) {
+  auto run = [&](const vk::Kernel& kernel, const char* pass, uint32_t per_probe,
+                 VkDescriptorSet shadow_set = VK_NULL_HANDLE) {
     timer.begin_pass(cmd, pass);
-    record_linear(cmd, kernel, window.start, probe_list_size_, window.count, per_probe);
+    record_linear(cmd, kernel, window.start, probe_list_size_, window.count, per_probe, 0, 0,
+                  shadow_set);
     timer.end_pass(cmd);
   };
   run(trace_, "field trace", total_rays);
-  run(shade_, "field shade", params_.rays_per_probe);
+  if (shadow_field_ && uses_shadow_field(direct_mode)) {
+    run(shade_with_shadow_field_, "field shade", params_.rays_per_probe,
+        shadow_field_->sampling_set());
+  } else {
+    run(shade_, "field shade", params_.rays_per_probe);
+  }
   run(blend_irradiance_, "blend irradiance", ti * ti);
   run(blend_distance_, "blend distance", td * td);
   run(borders_, "borders", 4 * (std::max(ti, td) + 1));

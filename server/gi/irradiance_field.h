@@ -10,6 +10,7 @@
 #include "core/result.h"
 #include "gi/field_params.h"
 #include "gi/probe_scheduler.h"
+#include "gi/shadow_field.h"
 #include "render/frame_types.h"
 #include "render/gpu_scene.h"
 #include "shared/field_data.h"
@@ -28,9 +29,13 @@ struct IrradianceQuery {
 
 class IrradianceField {
  public:
+  // `shadow_field` (optional, must outlive the field): what probe-ray hits read in the
+  // shadow-field and AO direct modes; without one those modes trace shadow rays there. The
+  // caller updates it (before this field's updates, so that they read its newest state).
   static Result<std::unique_ptr<IrradianceField>> create(vk::Context& context, GpuScene& scene,
                                                          const IrradianceFieldParams& params,
-                                                         vk::TraceBackend backend);
+                                                         vk::TraceBackend backend,
+                                                         const ShadowField* shadow_field = nullptr);
 
   const IrradianceFieldParams& params() const { return params_; }
   // Applies new parameters. Changes of the grid, ray or texel counts rebuild the atlases and
@@ -74,27 +79,35 @@ class IrradianceField {
   Result<std::vector<gpu::ProbeState>> read_probe_states();
   // Probe rays (blended + fixed) the last recorded update traced.
   uint64_t last_update_probe_rays() const { return last_update_probe_rays_; }
-  // Rays traced by the last update: probe rays plus one shadow ray per light per shaded ray.
+  // Rays traced by the last update: probe rays plus one shadow ray per traced light per shaded
+  // ray.
   uint64_t rays_per_update() const;
 
  private:
-  IrradianceField(vk::Context& context, GpuScene& scene) : context_(context), scene_(scene) {}
+  IrradianceField(vk::Context& context, GpuScene& scene, const ShadowField* shadow_field)
+      : context_(context), scene_(scene), shadow_field_(shadow_field) {}
   Status create_layouts_and_kernels(vk::TraceBackend backend);
   Status create_resources();
   gpu::FieldConstants constants(DirectMode direct_mode) const;
+  // Lights whose visibility probe-ray hits trace in `direct_mode` (the rest read the shadow
+  // field or are unshadowed).
+  uint32_t traced_lights(DirectMode direct_mode) const;
   // Moves probes out of geometry and classifies them, for the probes in `probes` (all of them
   // at initialisation, those near moved geometry later). `relocate`: run the relocation passes
   // first. `dynamic_regions`: where moving objects are; active probes there are Awake.
   Status manage_probes(const std::vector<uint32_t>& probes, bool relocate,
                        const std::vector<Bounds>& dynamic_regions);
   Status write_probe_list(const std::vector<uint32_t>& probes);
+  // `shadow_set`: bound as set 3 when not null (the shade kernel's shadow-field variant).
   void record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel, uint32_t list_start,
                      uint32_t list_size, uint32_t probes, uint32_t per_probe,
-                     uint32_t first_ray = 0, uint32_t mode = 0);
+                     uint32_t first_ray = 0, uint32_t mode = 0,
+                     VkDescriptorSet shadow_set = VK_NULL_HANDLE);
   Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels);
 
   vk::Context& context_;
   GpuScene& scene_;
+  const ShadowField* shadow_field_;
   IrradianceFieldParams params_;
   AtlasLayout layout_;
   uint64_t update_index_ = 0;
@@ -109,6 +122,7 @@ class IrradianceField {
   VkDescriptorSet query_set_ = VK_NULL_HANDLE;  // rewritten by every query
   vk::Kernel trace_;
   vk::Kernel shade_;
+  vk::Kernel shade_with_shadow_field_;  // only with a shadow field
   vk::Kernel blend_irradiance_;
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
@@ -126,6 +140,7 @@ class IrradianceField {
   uint64_t seen_moves_ = 0;  // GpuScene::move_count() already handled
   uint64_t last_update_probe_rays_ = 0;
   uint64_t last_update_shaded_rays_ = 0;
+  uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
   vk::Sampler sampler_;

@@ -32,6 +32,10 @@ Result<Tonemap> parse_tonemap(const std::string& text);
 // "shadow-rays", "unshadowed", "shadow-field", "ao".
 Result<DirectMode> parse_direct_mode(const std::string& text);
 const char* direct_mode_name(DirectMode mode);
+// Whether `mode` reads a shadow field (the shadow-field and AO modes).
+inline bool uses_shadow_field(DirectMode mode) {
+  return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
+}
 Result<View> parse_view(const std::string& text);
 
 }  // namespace ddgi

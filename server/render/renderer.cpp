@@ -24,10 +24,6 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-bool uses_shadow_field(DirectMode mode) {
-  return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
-}
-
 }  // namespace
 
 Status validate(const FrameSettings& s) {
@@ -235,6 +231,12 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   if (field_ && settings.field_updates > 0) DDGI_TRY(field_->prepare());
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_.begin_frame(cmd);
+    // The shadow field first: the irradiance field's probe rays read it in these modes.
+    if (shadow_mode) {
+      for (uint32_t i = 0; i < settings.shadow_field_updates; ++i) {
+        shadow_field_->record_update(cmd, timer_, settings.direct_mode);
+      }
+    }
     if (field_) {
       for (uint32_t i = 0; i < settings.field_updates; ++i) {
         field_->record_update(cmd, timer_, settings.direct_mode);
@@ -244,11 +246,6 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
     primary_.dispatch(cmd, frame_sets, &primary, size);
     timer_.end_pass(cmd);
     vk::barrier_all(cmd);
-    if (shadow_mode) {
-      for (uint32_t i = 0; i < settings.shadow_field_updates; ++i) {
-        shadow_field_->record_update(cmd, timer_, settings.direct_mode);
-      }
-    }
     timer_.begin_pass(cmd, "direct");
     if (shadow_mode) {
       const VkDescriptorSet shadow_sets[] = {scene_.descriptor_set(), frame_set_,

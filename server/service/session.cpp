@@ -14,10 +14,6 @@
 
 namespace ddgi::service {
 
-bool uses_shadow_field(DirectMode mode) {
-  return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
-}
-
 int64_t unix_micros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::system_clock::now().time_since_epoch())
@@ -293,18 +289,7 @@ Status Session::load(const SceneRequest& request) {
   }
   vk::Context& context = *env_.context;
   DDGI_ASSIGN_OR_RETURN(std::unique_ptr<GpuScene> gpu, GpuScene::create(context, *scene));
-  std::unique_ptr<IrradianceField> field;
-  if (options_.gi) {
-    IrradianceFieldParams params = default_field_params(*scene);
-    DDGI_TRY(apply_field_assignments(params, options_.field_assignments));
-    DDGI_ASSIGN_OR_RETURN(
-        field, IrradianceField::create(context, *gpu, params, context.default_backend()));
-    // As ddgi-render does: fast convergence first, then the configured hysteresis.
-    if (request.warmup_updates > 0) {
-      DDGI_TRY(field->warm_up(request.warmup_updates, options_.direct_mode));
-      env_.metrics->field_updates.fetch_add(request.warmup_updates);
-    }
-  }
+  // The shadow field first: the irradiance field's probe rays read it in its modes.
   std::unique_ptr<ShadowField> shadow_field;
   if (uses_shadow_field(options_.direct_mode)) {
     ShadowFieldParams params = fit_shadow_grid(scene->world_bounds());
@@ -314,6 +299,19 @@ Status Session::load(const SceneRequest& request) {
     if (request.warmup_updates > 0) {
       auto warm = shadow_field->update(request.warmup_updates, options_.direct_mode);
       if (!warm.ok()) return warm.error();
+    }
+  }
+  std::unique_ptr<IrradianceField> field;
+  if (options_.gi) {
+    IrradianceFieldParams params = default_field_params(*scene);
+    DDGI_TRY(apply_field_assignments(params, options_.field_assignments));
+    DDGI_ASSIGN_OR_RETURN(field,
+                          IrradianceField::create(context, *gpu, params, context.default_backend(),
+                                                  shadow_field.get()));
+    // As ddgi-render does: fast convergence first, then the configured hysteresis.
+    if (request.warmup_updates > 0) {
+      DDGI_TRY(field->warm_up(request.warmup_updates, options_.direct_mode));
+      env_.metrics->field_updates.fetch_add(request.warmup_updates);
     }
   }
   // Renderers point at the old scene and field: drop them before those go.

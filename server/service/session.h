@@ -52,9 +52,6 @@ struct SessionOptions {
   std::vector<std::string> shadow_assignments;
 };
 
-// Whether `mode` samples a shadow field.
-bool uses_shadow_field(DirectMode mode);
-
 // What every session shares with the rest of the server.
 struct SessionEnv {
   vk::Context* context = nullptr;

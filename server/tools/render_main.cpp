@@ -174,15 +174,9 @@ Status run(int argc, char** argv) {
     reference.exposure = settings.exposure;
     return render_reference(*context, *gpu_scene, context->default_backend(), reference);
   }
-  std::unique_ptr<IrradianceField> field;
-  if (gi == "on") {
-    DDGI_ASSIGN_OR_RETURN(field, IrradianceField::create(*context, *gpu_scene, field_params,
-                                                         context->default_backend()));
-  }
+  // The shadow field first: the irradiance field's probe rays read it in its modes.
   std::unique_ptr<ShadowField> shadow_field;
-  const bool shadow_mode = settings.direct_mode == DirectMode::kShadowField ||
-                           settings.direct_mode == DirectMode::kAmbientOcclusion;
-  if (shadow_mode) {
+  if (uses_shadow_field(settings.direct_mode)) {
     DDGI_ASSIGN_OR_RETURN(shadow_field, ShadowField::create(*context, *gpu_scene, shadow_params,
                                                             context->default_backend()));
     const ShadowFieldParams& p = shadow_field->params();
@@ -192,6 +186,12 @@ Status run(int argc, char** argv) {
              << shadow_field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
     const auto warm = shadow_field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
     if (!warm.ok()) return warm.error();
+  }
+  std::unique_ptr<IrradianceField> field;
+  if (gi == "on") {
+    DDGI_ASSIGN_OR_RETURN(field,
+                          IrradianceField::create(*context, *gpu_scene, field_params,
+                                                  context->default_backend(), shadow_field.get()));
   }
   DDGI_ASSIGN_OR_RETURN(
       auto renderer, Renderer::create(*context, *gpu_scene, field.get(), context->default_backend(),

@@ -275,17 +275,17 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
   };
   std::vector<Live> live(runs.size());
   for (size_t m = 0; m < runs.size(); ++m) {
-    if (o.gi) {
-      DDGI_ASSIGN_OR_RETURN(
-          live[m].field,
-          IrradianceField::create(context, *gpu_scene, default_field_params(scene), backend));
-      const auto warm = live[m].field->update(o.warmup, runs[m].mode);
-      if (!warm.ok()) return warm.error();
-    }
     if (runs[m].has_shadow_field) {
       DDGI_ASSIGN_OR_RETURN(live[m].shadow,
                             ShadowField::create(context, *gpu_scene, runs[m].shadow, backend));
       const auto warm = live[m].shadow->update(o.warmup, runs[m].mode);
+      if (!warm.ok()) return warm.error();
+    }
+    if (o.gi) {
+      DDGI_ASSIGN_OR_RETURN(
+          live[m].field, IrradianceField::create(context, *gpu_scene, default_field_params(scene),
+                                                 backend, live[m].shadow.get()));
+      const auto warm = live[m].field->update(o.warmup, runs[m].mode);
       if (!warm.ok()) return warm.error();
     }
     DDGI_ASSIGN_OR_RETURN(

@@ -31,7 +31,8 @@ void main() {
     s.emission = ray.emission;
     s.front_face = true;
     Rng rng = rng_seed(index, field.update_index, 0x5bd1e995u);
-    // No shadow field is bound here: its modes shade probe-ray hits with traced shadow rays.
+    // Compiled twice: with DDGI_SHADOW_FIELD_SET the shadow field's modes read it here too;
+    // without, they shade probe-ray hits with traced shadow rays.
     const vec3 direct = direct_light(s, field.direct_mode, 1u, -direction, false, rng);
     const vec3 indirect = s.albedo * field.energy_conservation *
                           sample_irradiance(s.position, s.normal, -direction);

@@ -3,8 +3,8 @@
 // sees that way, plus the distance moments that tell a shading point whether the probe sees it.
 //
 // GLSL kernels pick the set the sampling resources live in with DDGI_SHADOW_FIELD_SET (the
-// field's own update kernels and the frame's direct pass use 2; a kernel that also samples the
-// irradiance field would use 3).
+// field's own update kernels and the frame's direct pass use 2; the irradiance field's probe-ray
+// shading, which samples the irradiance field as set 2, uses 3).
 #ifndef DDGI_SHARED_SHADOW_FIELD_DATA_H
 #define DDGI_SHARED_SHADOW_FIELD_DATA_H
 

@@ -42,17 +42,17 @@ class ShadowRenderTest : public GpuTest {
     EXPECT_TRUE(gpu.ok()) << gpu.error().message;
     if (!gpu.ok()) return s;
     s.gpu = std::move(gpu).value();
-    if (with_gi) {
-      IrradianceFieldParams params = fit_grid_to_bounds(s.scene.world_bounds(), 64);
-      params.rays_per_probe = 64;
-      auto field = IrradianceField::create(context(), *s.gpu, params, backend);
-      EXPECT_TRUE(field.ok()) << field.error().message;
-      if (field.ok()) s.field = std::move(field).value();
-    }
     if (with_shadow_field) {
       auto shadow = ShadowField::create(context(), *s.gpu, box_on_floor_grid(), backend);
       EXPECT_TRUE(shadow.ok()) << shadow.error().message;
       if (shadow.ok()) s.shadow = std::move(shadow).value();
+    }
+    if (with_gi) {
+      IrradianceFieldParams params = fit_grid_to_bounds(s.scene.world_bounds(), 64);
+      params.rays_per_probe = 64;
+      auto field = IrradianceField::create(context(), *s.gpu, params, backend, s.shadow.get());
+      EXPECT_TRUE(field.ok()) << field.error().message;
+      if (field.ok()) s.field = std::move(field).value();
     }
     auto renderer = Renderer::create(context(), *s.gpu, s.field.get(), backend, s.shadow.get());
     EXPECT_TRUE(renderer.ok()) << renderer.error().message;
@@ -163,10 +163,9 @@ TEST_F(ShadowRenderTest, BackendsAgreeInShadowFieldMode) {
   EXPECT_LT(relative_difference(frames[1], frames[0]), 1e-5f);
 }
 
-// Probe rays of the irradiance field are shaded in the frame's mode: unshadowed light reaches
-// the cube's shadow on the floor, traced shadow rays keep it out. The irradiance field's kernels
-// do not bind a shadow field, so there its modes fall back to traced shadow rays: the same
-// irradiance as the shadow-rays mode (docs/shadow-field.md, "Probe rays").
+// Probe rays of the irradiance field are lit in the chosen mode: unshadowed light reaches the
+// cube's shadow on the floor, traced shadow rays keep it out, and with a shadow field bound its
+// mode reads the field there instead of tracing (docs/shadow-field.md, "Probe rays").
 TEST_F(ShadowRenderTest, ProbeRaysAreShadedInTheChosenMode) {
   Scene scene = load_repo_scene("box_on_floor.gltf");
   auto gpu = GpuScene::create(context(), scene);
@@ -176,29 +175,67 @@ TEST_F(ShadowRenderTest, ProbeRaysAreShadedInTheChosenMode) {
   params.spacing = glm::vec3(0.5f);
   params.counts = {12, 3, 12};
   params.rays_per_probe = 64;
-  std::vector<IrradianceQuery> shadowed;  // the floor behind the cube, away from the light
-  for (float x = 0.7f; x < 1.7f; x += 0.2f) {
-    for (float z = -0.5f; z <= 0.5f; z += 0.25f) {
-      shadowed.push_back({{x, 0.0f, z}, {0, 1, 0}, {0, 1, 0}});
+  auto floor_points = [](float x0, float x1) {
+    std::vector<IrradianceQuery> points;
+    for (float x = x0; x < x1; x += 0.2f) {
+      for (float z = -0.5f; z <= 0.5f; z += 0.25f) {
+        points.push_back({{x, 0.0f, z}, {0, 1, 0}, {0, 1, 0}});
+      }
     }
-  }
-  float mean[3] = {};
-  const DirectMode modes[3] = {DirectMode::kTracedShadows, DirectMode::kUnshadowed,
-                               DirectMode::kShadowField};
-  for (int m = 0; m < 3; ++m) {
-    auto field = IrradianceField::create(context(), **gpu, params, context().default_backend());
+    return points;
+  };
+  const std::vector<IrradianceQuery> shadowed = floor_points(0.7f, 1.7f);  // behind the cube
+  const std::vector<IrradianceQuery> lit = floor_points(-2.0f, -1.0f);     // facing the light
+
+  auto warmed =
+      ShadowField::create(context(), **gpu, box_on_floor_grid(), context().default_backend());
+  ASSERT_TRUE(warmed.ok()) << warmed.error().message;
+  ASSERT_TRUE((*warmed)->update(16, DirectMode::kShadowField).ok());
+  // Never updated: its maps start lit (visibility 1), so the cube casts no shadow in it.
+  auto empty =
+      ShadowField::create(context(), **gpu, box_on_floor_grid(), context().default_backend());
+  ASSERT_TRUE(empty.ok()) << empty.error().message;
+
+  struct Case {
+    const char* name;
+    DirectMode mode;
+    const ShadowField* shadow;
+    float in_shadow = 0.0f, in_light = 0.0f;
+    uint64_t rays = 0;
+  };
+  Case cases[] = {{"shadow rays", DirectMode::kTracedShadows, nullptr},
+                  {"unshadowed", DirectMode::kUnshadowed, nullptr},
+                  {"shadow field", DirectMode::kShadowField, warmed->get()},
+                  {"empty shadow field", DirectMode::kShadowField, empty->get()},
+                  {"shadow field, none bound", DirectMode::kShadowField, nullptr}};
+  for (Case& c : cases) {
+    auto field =
+        IrradianceField::create(context(), **gpu, params, context().default_backend(), c.shadow);
     ASSERT_TRUE(field.ok()) << field.error().message;
-    ASSERT_TRUE((*field)->update(4, modes[m]).ok());
-    auto answers = (*field)->query(shadowed);
-    ASSERT_TRUE(answers.ok()) << answers.error().message;
-    for (const glm::vec3& v : *answers) mean[m] += v.y / float(answers->size());
+    ASSERT_TRUE((*field)->update(4, c.mode).ok());
+    c.rays = (*field)->rays_per_update();
+    for (auto [points, mean] : {std::pair{&shadowed, &c.in_shadow}, std::pair{&lit, &c.in_light}}) {
+      auto answers = (*field)->query(*points);
+      ASSERT_TRUE(answers.ok()) << answers.error().message;
+      for (const glm::vec3& v : *answers) *mean += v.y / float(answers->size());
+    }
+    std::printf("%-26s field irradiance in the shadow %.5f, in the light %.5f, %llu rays\n", c.name,
+                c.in_shadow, c.in_light, static_cast<unsigned long long>(c.rays));
   }
-  std::printf(
-      "field irradiance in the shadow: shadow rays %.4f, unshadowed %.4f, "
-      "shadow field %.4f\n",
-      mean[0], mean[1], mean[2]);
-  EXPECT_GT(mean[1], 1.5f * mean[0]);  // measured 0.0025 vs 0.0011
-  EXPECT_NEAR(mean[2], mean[0], 1e-5f * std::max(mean[0], 1.0f));
+  const Case &traced = cases[0], &unshadowed = cases[1], &field = cases[2], &empty_field = cases[3],
+             &unbound = cases[4];
+  EXPECT_GT(unshadowed.in_shadow, 1.5f * traced.in_shadow);
+  // The field's visibility approximates the traced one: within 20% of its irradiance.
+  EXPECT_NEAR(field.in_shadow, traced.in_shadow, 0.2f * traced.in_shadow);
+  EXPECT_NEAR(field.in_light, traced.in_light, 0.2f * traced.in_light);
+  // It is read, not traced: through an empty field the light reaches the shadow as unshadowed
+  // light does, and no shadow rays are counted.
+  EXPECT_GT(empty_field.in_shadow, 1.5f * traced.in_shadow);
+  EXPECT_LT(field.rays, traced.rays);
+  EXPECT_EQ(field.rays, unshadowed.rays);
+  // Without a shadow field the mode traces shadow rays at probe-ray hits.
+  EXPECT_NEAR(unbound.in_shadow, traced.in_shadow, 1e-5f * std::max(traced.in_shadow, 1.0f));
+  EXPECT_EQ(unbound.rays, traced.rays);
 }
 
 }  // namespace
