@@ -149,6 +149,27 @@ const std::vector<Entry>& entries() {
       uint_entry("emitter_samples",
                  "emitter samples per pixel and probe-ray hit, [0, 64]; 0: emitters via the field",
                  &P::emitter_samples),
+      {{"probe_direct",
+        "direct light at probe-ray hits: frame (the frame's mode), shadow-rays, unshadowed, "
+        "shadow-field or ao"},
+       [](P& p, const std::string& text) -> Status {
+         if (text == "frame") {
+           p.probe_direct.reset();
+           return ok_status();
+         }
+         auto mode = parse_direct_mode(text);
+         if (!mode.ok()) {
+           return invalid_argument(
+               "probe_direct must be frame, shadow-rays, unshadowed, "
+               "shadow-field or ao (got '" +
+               text + "')");
+         }
+         p.probe_direct = *mode;
+         return ok_status();
+       },
+       [](const P& p) {
+         return std::string(p.probe_direct ? direct_mode_name(*p.probe_direct) : "frame");
+       }},
       uint_entry("seed", "seed of the random ray rotations", &P::seed),
   };
   return table;

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "core/result.h"
+#include "render/frame_types.h"
 #include "scene/scene.h"
 
 namespace ddgi {
@@ -108,6 +110,14 @@ struct IrradianceFieldParams {
   // emitters, the 2021 paper's way). [0, 64]. Off by default: the option the field is measured
   // against (docs/results/field-quality.md); it is noisier per pixel but sharp.
   uint32_t emitter_samples = 0;
+
+  // --- Direct light at probe-ray hits (docs/shadow-field.md, "Probe rays") -------------------
+  // How punctual lights light the probe-ray hits: a direct mode of its own, or none (the
+  // default) to follow the mode of the frame or update that runs the field. The field is a
+  // blurred, lagging estimate anyway, so its direct light can be cheaper than the frame's:
+  // e.g. frames with exact shadow rays, probe rays reading the shadow field. The shadow-field
+  // and AO modes need a shadow field; without one they trace shadow rays.
+  std::optional<DirectMode> probe_direct;
 
   // --- Determinism ----------------------------------------------------------------------------
   // Seed of the per-update random ray rotation: the same seed gives the same field.

@@ -418,7 +418,8 @@ uint32_t IrradianceField::traced_lights(DirectMode direct_mode) const {
 }
 
 void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
-                                    DirectMode direct_mode) {
+                                    DirectMode frame_mode) {
+  const DirectMode direct_mode = probe_mode(frame_mode);
   if (scheduler_.take_active_changed() || !probe_list_is_active_) {
     (void)write_probe_list(scheduler_.active());
     probe_list_is_active_ = true;

@@ -47,8 +47,13 @@ class IrradianceField {
   // Brings probe states up to date with moved geometry (reclassifies probes near moved
   // instances, waking sleeping ones). Call before recording updates; it submits GPU work.
   Status prepare();
+  // The mode probe-ray hits are lit in when the frame (or caller) runs the field in
+  // `frame_mode`: the probe_direct parameter if set, else `frame_mode`.
+  DirectMode probe_mode(DirectMode frame_mode) const {
+    return params_.probe_direct.value_or(frame_mode);
+  }
   // Records one update into `cmd`, timing its passes with `timer`: the next window of active
-  // probes (all of them unless max_rays_per_update caps it).
+  // probes (all of them unless max_rays_per_update caps it), lit in probe_mode(direct_mode).
   void record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode);
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);

@@ -228,13 +228,21 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   const std::span<const VkDescriptorSet> frame_sets(sets, 2);
   const glm::uvec3 size{settings.width, settings.height, 1};
 
+  // The shadow field is updated when the frame reads it, or when the irradiance field's probe
+  // rays do (their own mode, field parameter probe_direct).
+  const DirectMode probe_mode =
+      field_ ? field_->probe_mode(settings.direct_mode) : settings.direct_mode;
+  const bool probes_read_shadow_field =
+      field_ && settings.field_updates > 0 && uses_shadow_field(probe_mode);
+  const bool update_shadow_field = shadow_field_ && (shadow_mode || probes_read_shadow_field);
+  const DirectMode shadow_update_mode = shadow_mode ? settings.direct_mode : probe_mode;
   if (field_ && settings.field_updates > 0) DDGI_TRY(field_->prepare());
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_.begin_frame(cmd);
     // The shadow field first: the irradiance field's probe rays read it in these modes.
-    if (shadow_mode) {
+    if (update_shadow_field) {
       for (uint32_t i = 0; i < settings.shadow_field_updates; ++i) {
-        shadow_field_->record_update(cmd, timer_, settings.direct_mode);
+        shadow_field_->record_update(cmd, timer_, shadow_update_mode);
       }
     }
     if (field_) {

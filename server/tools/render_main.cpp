@@ -174,9 +174,13 @@ Status run(int argc, char** argv) {
     reference.exposure = settings.exposure;
     return render_reference(*context, *gpu_scene, context->default_backend(), reference);
   }
-  // The shadow field first: the irradiance field's probe rays read it in its modes.
+  // The shadow field first: the irradiance field's probe rays read it in its modes. It exists
+  // when the frame reads it or the probe rays do (--field probe_direct=...).
+  const DirectMode probe_mode = field_params.probe_direct.value_or(settings.direct_mode);
+  const DirectMode shadow_mode =
+      uses_shadow_field(settings.direct_mode) || gi != "on" ? settings.direct_mode : probe_mode;
   std::unique_ptr<ShadowField> shadow_field;
-  if (uses_shadow_field(settings.direct_mode)) {
+  if (uses_shadow_field(shadow_mode)) {
     DDGI_ASSIGN_OR_RETURN(shadow_field, ShadowField::create(*context, *gpu_scene, shadow_params,
                                                             context->default_backend()));
     const ShadowFieldParams& p = shadow_field->params();
@@ -184,7 +188,7 @@ Status run(int argc, char** argv) {
              << " probes, " << p.rays_per_probe << " rays each, " << p.texels << "^2 texels, "
              << shadow_field->kept_lights() << " of " << scene.lights.size() << " lights kept, "
              << shadow_field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
-    const auto warm = shadow_field->update(static_cast<uint32_t>(warmup), settings.direct_mode);
+    const auto warm = shadow_field->update(static_cast<uint32_t>(warmup), shadow_mode);
     if (!warm.ok()) return warm.error();
   }
   std::unique_ptr<IrradianceField> field;
@@ -252,7 +256,7 @@ Status run(int argc, char** argv) {
                 double(field->rays_per_update()) / (field_ms * 1e3));
   }
   if (shadow_field && shadow_ms > 0.0) {
-    const uint64_t rays = shadow_field->rays_per_update(settings.direct_mode);
+    const uint64_t rays = shadow_field->rays_per_update(shadow_mode);
     std::printf("shadow field update: %.3f ms, %llu rays, %.1f Mrays/s\n", shadow_ms,
                 static_cast<unsigned long long>(rays), double(rays) / (shadow_ms * 1e3));
   }

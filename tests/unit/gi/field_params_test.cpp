@@ -121,5 +121,18 @@ TEST(FieldParamTable, BadAssignmentsLeaveParamsUnchanged) {
   EXPECT_EQ(p.counts, before.counts);
 }
 
+TEST(FieldParamTable, ProbeDirectNamesADirectModeOrTheFrames) {
+  IrradianceFieldParams p;
+  EXPECT_EQ(*get_field_param(p, "probe_direct"), "frame");
+  ASSERT_TRUE(set_field_param(p, "probe_direct", "shadow-field").ok());
+  EXPECT_EQ(p.probe_direct, DirectMode::kShadowField);
+  EXPECT_EQ(*get_field_param(p, "probe_direct"), "shadow-field");
+  ASSERT_TRUE(set_field_param(p, "probe_direct", "frame").ok());
+  EXPECT_FALSE(p.probe_direct.has_value());
+  EXPECT_THAT(set_field_param(p, "probe_direct", "rays").error().message,
+              HasSubstr("probe_direct must be frame, shadow-rays, unshadowed, shadow-field or ao "
+                        "(got 'rays')"));
+}
+
 }  // namespace
 }  // namespace ddgi
