@@ -66,10 +66,24 @@ ProbeScheduler::Window ProbeScheduler::next_window(uint32_t max_probes) {
 }
 
 void ProbeScheduler::rebuild_active() {
-  active_.clear();
+  auto is_active = [&](uint32_t p) {
+    return states_[p] == gpu::kProbeVigilant || states_[p] == gpu::kProbeAwake;
+  };
+  std::vector<bool> was_active(states_.size(), false);
+  for (uint32_t p : active_) was_active[p] = true;
+  std::vector<uint32_t> order;
+  // Newly active probes first: the next window starts with them.
   for (uint32_t p = 0; p < states_.size(); ++p) {
-    if (states_[p] == gpu::kProbeVigilant || states_[p] == gpu::kProbeAwake) active_.push_back(p);
+    if (is_active(p) && !was_active[p]) order.push_back(p);
   }
+  // Then the probes that stay active, from the one whose turn was next.
+  const size_t before = active_.size();
+  for (size_t i = 0; i < before; ++i) {
+    const uint32_t p = active_[(cursor_ + i) % before];
+    if (is_active(p)) order.push_back(p);
+  }
+  active_ = std::move(order);
+  cursor_ = 0;
   active_changed_ = true;
 }
 

@@ -4,6 +4,9 @@
 //
 // Fairness: windows advance round-robin through the active list, so with A active probes and
 // at most K per update, every active probe is traced at least once every ceil(A / K) updates.
+// Probes that become active (woken by a moving object, or switched on) go to the front of the
+// queue: they have no history, so their first update comes before any other probe's turn; the
+// others keep their round-robin order, delayed by at most ceil(woken / K) updates.
 #pragma once
 
 #include <cstdint>
@@ -37,7 +40,8 @@ class ProbeScheduler {
   void set_states(const std::vector<uint8_t>& states);
   ProbeStateCounts counts() const;
 
-  // Traced probes (Vigilant and Awake), ascending.
+  // Traced probes (Vigilant and Awake), in the order updates take them: ascending at first,
+  // later with newly active probes first.
   const std::vector<uint32_t>& active() const { return active_; }
   // True once after the active list changed (so it can be uploaded again).
   bool take_active_changed();

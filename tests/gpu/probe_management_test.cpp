@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/irradiance_field.h"
 #include "render/gpu_scene.h"
+#include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
@@ -88,10 +90,11 @@ TEST_F(ProbeManagementTest, RelocationMovesProbesOutOfTheWall) {
   managed.classification = true;
   std::vector<gpu::ProbeState> states;
   const Measure relocated = measure(managed, &states);
-  std::printf("beside the wall (lit side): clean grid %.4f, probes in the wall %.4f, relocated "
-              "%.4f; dark/lit: %.5f%%, %.5f%%, %.5f%%\n",
-              clean.beside_wall, stuck.beside_wall, relocated.beside_wall,
-              100 * clean.dark_ratio, 100 * stuck.dark_ratio, 100 * relocated.dark_ratio);
+  std::printf(
+      "beside the wall (lit side): clean grid %.4f, probes in the wall %.4f, relocated "
+      "%.4f; dark/lit: %.5f%%, %.5f%%, %.5f%%\n",
+      clean.beside_wall, stuck.beside_wall, relocated.beside_wall, 100 * clean.dark_ratio,
+      100 * stuck.dark_ratio, 100 * relocated.dark_ratio);
 
   // The shadow leak: stuck probes darken the lit side; relocation removes most of the error.
   EXPECT_LT(stuck.beside_wall, 0.95f * clean.beside_wall);
@@ -128,11 +131,11 @@ TEST_F(ProbeManagementTest, ProbesInsideSolidsAreOffAndFarFromGeometrySleep) {
   const ProbeScheduler& s = f->scheduler();
   for (uint32_t i = 0; i < 12; ++i) {
     const float x = -1.5f + float(i);
-    const uint32_t expected = x < 2.0f    ? gpu::kProbeOff        // inside the box
-                              : x < 3.6f  ? gpu::kProbeVigilant   // face within sqrt(3) m
-                                          : gpu::kProbeSleeping;  // nothing within reach
-    EXPECT_EQ(s.state(i), expected) << "probe at x = " << x << " is "
-                                    << probe_state_name(s.state(i));
+    const uint32_t expected = x < 2.0f   ? gpu::kProbeOff        // inside the box
+                              : x < 3.6f ? gpu::kProbeVigilant   // face within sqrt(3) m
+                                         : gpu::kProbeSleeping;  // nothing within reach
+    EXPECT_EQ(s.state(i), expected)
+        << "probe at x = " << x << " is " << probe_state_name(s.state(i));
   }
   const ProbeStateCounts counts = f->probe_counts();
   EXPECT_EQ(counts.off, 4u);
@@ -141,11 +144,15 @@ TEST_F(ProbeManagementTest, ProbesInsideSolidsAreOffAndFarFromGeometrySleep) {
 }
 
 // An object moved next to sleeping probes wakes them before any frame is shaded by them: the
-// renderer calls prepare() before recording the frame, and the first update of a woken probe
-// takes its new value at once (no history).
+// renderer calls prepare() before recording the frame's field update, woken probes go first
+// under the ray budget, and their first update takes its value at once (no history). Without
+// the move (the control) the same frames leave the probes asleep and the box's place unlit.
 TEST_F(ProbeManagementTest, MovingObjectWakesSleepingProbesBeforeTheyShade) {
   Scene scene;
   const int white = add_material(scene, glm::vec3(0.8f));
+  // A floor 0.5 m under the lowest probe layer keeps the two lower layers Vigilant (traced
+  // before the move, so the budget has other probes to serve); the upper two sleep.
+  add_quad(scene, {-20, -2, 20}, {20, -2, 20}, {20, -2, -20}, {-20, -2, -20}, white);
   const int mover = add_box(scene, glm::translate(glm::mat4(1.0f), {40.0f, 0.0f, 0.0f}), white);
   Light light;
   light.position = {0.0f, 3.0f, 0.0f};
@@ -158,21 +165,57 @@ TEST_F(ProbeManagementTest, MovingObjectWakesSleepingProbesBeforeTheyShade) {
   p.spacing = {1.0f, 1.0f, 1.0f};
   p.counts = {4, 4, 4};
   p.rays_per_probe = 32;
-  auto f = field(*gpu, p);
-  ASSERT_TRUE(f);
-  ASSERT_EQ(f->probe_counts().sleeping, 64u);  // the box is 40 m away
+  p.fixed_rays = 32;
+  p.max_rays_per_update = 8 * (p.rays_per_probe + p.fixed_rays);  // 8 probes per update
+  // The box moves to y in [0.5, 1.5], among the sleeping layers. A point on its +x face, facing
+  // the lit floor: its cage (layers y = 0.5 and 1.5) is lit only by probes traced since the move.
+  const IrradianceQuery side{{0.5001f, 1.0f, 0.0f}, {1, 0, 0}, {1, 0, 0}};
 
-  ASSERT_TRUE(gpu->set_instance_transform(mover, glm::mat4(1.0f)).ok());  // to the grid's centre
-  ASSERT_TRUE(f->prepare().ok());
-  const ProbeStateCounts woken = f->probe_counts();
-  EXPECT_GE(woken.awake, 8u);  // at least the cage around the box
-  EXPECT_EQ(woken.vigilant, 0u);
+  for (bool moved : {false, true}) {
+    auto f = field(*gpu, p);
+    ASSERT_TRUE(f);
+    const ProbeStateCounts before = f->probe_counts();
+    ASSERT_EQ(before.vigilant, 32u);
+    ASSERT_EQ(before.sleeping, 32u);
+    auto renderer = Renderer::create(context(), *gpu, f.get(), context().default_backend());
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    FrameSettings settings;
+    settings.width = 8;
+    settings.height = 8;
+    settings.field_updates = 1;
+    ASSERT_TRUE((*renderer)->render(settings).ok());  // the round-robin is under way
+    auto asleep = f->read_probe_states();
+    ASSERT_TRUE(asleep.ok());
 
-  // One update later the woken probes light the box's top face; sleeping ones never would.
-  ASSERT_TRUE(f->update(1, DirectMode::kTracedShadows).ok());
-  auto top = f->query({{{0.0f, 0.5001f, 0.0f}, {1, 0, 0}, {0, 1, 0}}});
-  ASSERT_TRUE(top.ok());
-  EXPECT_GT((*top)[0].x, 0.0f);
+    const glm::mat4 to =
+        glm::translate(glm::mat4(1.0f), moved ? glm::vec3(0, 1, 0) : glm::vec3(40, 0, 0));
+    ASSERT_TRUE(gpu->set_instance_transform(mover, to).ok());
+    ASSERT_TRUE((*renderer)->render(settings).ok());  // prepare() runs inside
+    const uint32_t woken = static_cast<uint32_t>(f->probe_counts().active() - before.active());
+    // Enough frames for every woken probe at 8 per update, and no more.
+    for (uint32_t u = 1; u < (woken + 7) / 8; ++u) ASSERT_TRUE((*renderer)->render(settings).ok());
+    auto states = f->read_probe_states();
+    ASSERT_TRUE(states.ok());
+    auto lit = f->query({side});
+    ASSERT_TRUE(lit.ok());
+    std::printf("%s: %u probes woken, box side %.4g\n", moved ? "moved" : "control", woken,
+                (*lit)[0].x);
+    if (!moved) {
+      EXPECT_EQ(woken, 0u);
+      EXPECT_EQ((*lit)[0].x, 0.0f);  // the probes around x = 0.5 sleep, never traced
+      continue;
+    }
+    EXPECT_GE(woken, 8u);  // at least the upper cage around the box
+    // Every woken probe (Sleeping before the move) was updated within ceil(woken / 8) frames,
+    // ahead of the Vigilant probes whose turn it was.
+    for (uint32_t probe = 0; probe < states->size(); ++probe) {
+      if (state_of((*asleep)[probe]) != gpu::kProbeSleeping) continue;
+      if (state_of((*states)[probe]) != gpu::kProbeAwake) continue;
+      EXPECT_EQ((*states)[probe].flags & gpu::kProbeResetHistory, 0u)
+          << "woken probe " << probe << " not updated yet";
+    }
+    EXPECT_GT((*lit)[0].x, 0.0f);
+  }
 }
 
 // With a budget below what the active probes need, no update traces more probe rays than the

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 #include "gi/probe_scheduler.h"
 
@@ -55,6 +56,29 @@ TEST(ProbeScheduler, NoActiveProbesGivesEmptyWindows) {
   ProbeScheduler s(3);
   s.set_states({gpu::kProbeSleeping, gpu::kProbeOff, gpu::kProbeSleeping});
   EXPECT_EQ(s.next_window(2).count, 0u);
+}
+
+// A probe that wakes goes first: the next window starts with it, and the probes that were
+// already active keep their round-robin order from where it stopped.
+TEST(ProbeScheduler, WokenProbesAreTracedFirstAndTheOthersKeepTheirTurn) {
+  ProbeScheduler s(8);
+  s.set_states({gpu::kProbeVigilant, gpu::kProbeVigilant, gpu::kProbeVigilant, gpu::kProbeVigilant,
+                gpu::kProbeVigilant, gpu::kProbeVigilant, gpu::kProbeSleeping,
+                gpu::kProbeSleeping});
+  ASSERT_EQ(s.active(), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  const ProbeScheduler::Window first = s.next_window(4);  // probes 0..3
+  EXPECT_EQ(first.start, 0u);
+  s.set_state(7, gpu::kProbeAwake);
+  EXPECT_EQ(s.active(), (std::vector<uint32_t>{7, 4, 5, 0, 1, 2, 3}));
+  const ProbeScheduler::Window next = s.next_window(4);
+  EXPECT_EQ(next.start, 0u);
+  EXPECT_EQ(next.count, 4u);  // 7, then 4 and 5 whose turn it was, then 0
+  // Every probe still comes within ceil(7 / 4) windows.
+  std::set<uint32_t> seen;
+  for (uint32_t i = 0; i < next.count; ++i) seen.insert(s.active()[(next.start + i) % 7]);
+  const ProbeScheduler::Window after = s.next_window(4);
+  for (uint32_t i = 0; i < after.count; ++i) seen.insert(s.active()[(after.start + i) % 7]);
+  EXPECT_EQ(seen.size(), 7u);
 }
 
 }  // namespace
