@@ -36,7 +36,8 @@ Measures the direct-lighting modes against the path-traced reference. For each S
  1. path-trace the direct-only reference (emission seen + punctual lights: what the frame's
     direct view shows) and the full image, --spp samples each;
  2. set up every mode: shadow-rays, unshadowed, shadow-field at every --resolutions entry, and
-    the first resolution again with split updates; each mode gets its own irradiance field
+    the first resolution again with split updates, ao on the second; each mode gets its own
+    irradiance field
     (for the full image; its probe rays lit in that mode) and shadow field, warmed up;
  3. render --frames frames of each mode, the modes taking turns (so that all see the same GPU
     clocks), after as many untimed ones; median GPU ms of the direct light (direct pass +
@@ -48,6 +49,8 @@ after @ is what the shadow grids are fitted to (default: the scene's bounds).
 
   --width N --height N  image size                                     [480 x 270]
   --spp N               reference samples per pixel                    [1024]
+  --full-spp N          samples per pixel of the full reference (indirect light converges
+                        slower than direct)                            [--spp]
   --warmup N            irradiance- and shadow-field updates before measuring [64]
   --frames N            timed frames per mode                          [10]
   --resolutions LIST    shadow fields as CELLS:TEXELS separated by ';': a grid of about CELLS
@@ -175,7 +178,8 @@ struct PassRow {
 };
 
 struct Options {
-  uint32_t width = 480, height = 270, spp = 1024, warmup = 64, frames = 10, light_samples = 1;
+  uint32_t width = 480, height = 270, spp = 1024, full_spp = 1024, warmup = 64, frames = 10,
+           light_samples = 1;
   bool gi = true;
   std::string out_dir;
   std::vector<Resolution> resolutions;
@@ -225,21 +229,21 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
   pt.camera = default_camera(scene);
   pt.jitter = false;  // frames trace pixel centres too
   DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu_scene, backend));
-  auto accumulate = [&](PathTraceView view) -> Status {
+  auto accumulate = [&](PathTraceView view, uint32_t spp) -> Status {
     pt.view = view;
-    for (uint32_t done = 0; done < o.spp;) {
-      const uint32_t batch = std::min(64u, o.spp - done);
+    for (uint32_t done = 0; done < spp;) {
+      const uint32_t batch = std::min(64u, spp - done);
       DDGI_TRY(tracer->accumulate(pt, batch));
       done += batch;
     }
     return ok_status();
   };
-  DDGI_TRY(accumulate(PathTraceView::kFull));
+  DDGI_TRY(accumulate(PathTraceView::kFull, o.full_spp));
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
   const float exposure = reference_exposure(linear.radiance);
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage full_reference,
                         tracer->read(Tonemap::kAces, exposure));
-  DDGI_TRY(accumulate(PathTraceView::kPunctualDirect));
+  DDGI_TRY(accumulate(PathTraceView::kPunctualDirect, o.spp));
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage direct_reference,
                         tracer->read(Tonemap::kAces, exposure));
   tracer.reset();
@@ -249,17 +253,28 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
 
   std::vector<ModeRun> runs = {{"shadow-rays", DirectMode::kTracedShadows, false, {}},
                                {"unshadowed", DirectMode::kUnshadowed, false, {}}};
-  for (size_t r = 0; r < o.resolutions.size(); ++r) {
+  auto shadow_params = [&](const Resolution& resolution) -> Result<ShadowFieldParams> {
     ShadowFieldParams p =
-        fit_shadow_grid(arg.region.value_or(scene.world_bounds()), o.resolutions[r].cells);
-    p.texels = o.resolutions[r].texels;
+        fit_shadow_grid(arg.region.value_or(scene.world_bounds()), resolution.cells);
+    p.texels = resolution.texels;
     DDGI_TRY(apply_shadow_assignments(p, o.shadow_assignments));
+    return p;
+  };
+  for (size_t r = 0; r < o.resolutions.size(); ++r) {
+    DDGI_ASSIGN_OR_RETURN(ShadowFieldParams p, shadow_params(o.resolutions[r]));
     runs.push_back({"shadow-field", DirectMode::kShadowField, true, p});
     if (r == 0) {
       p.split_update = true;
       runs.push_back({"shadow-field split", DirectMode::kShadowField, true, p});
     }
   }
+  // The AO mode on the second resolution: the lights as in shadow-field, plus one AO ray per
+  // surfel. With GI the sky arrives through the irradiance field, so AO adds only cost there;
+  // without (--gi off) it adds the sky term.
+  DDGI_ASSIGN_OR_RETURN(
+      const ShadowFieldParams ao,
+      shadow_params(o.resolutions[std::min<size_t>(1, o.resolutions.size() - 1)]));
+  runs.push_back({"ao", DirectMode::kAmbientOcclusion, true, ao});
 
   // Every mode's field and renderer first, then their frames in turn: a GPU's clocks follow its
   // load, and timing one mode after another made whichever came after a pause (a pipeline
@@ -333,10 +348,15 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
       const std::string counts =
           std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z);
       grid = counts + ", " + std::to_string(run.shadow.texels) + "^2";
-      label = (run.shadow.split_update ? "split " : "") + counts + "/" +
-              std::to_string(run.shadow.texels);
+      const bool ao_mode = run.mode == DirectMode::kAmbientOcclusion;
+      label = std::string(run.shadow.split_update ? "split "
+                          : ao_mode               ? "ao "
+                                                  : "") +
+              counts + "/" + std::to_string(run.shadow.texels);
       PassRow row{stem,
-                  grid + (run.shadow.split_update ? ", split" : ""),
+                  grid + (run.shadow.split_update ? ", split"
+                          : ao_mode               ? ", ao"
+                                                  : ""),
                   l.shadow->rays_per_update(run.mode),
                   {}};
       for (auto& [name, values] : l.shadow_passes) row.ms[name] = median(values);
@@ -383,11 +403,12 @@ void print_pass_table(const std::vector<PassRow>& rows) {
 }
 
 Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
-                                                  {"width", "height", "spp", "warmup", "frames",
-                                                   "resolutions", "light-samples", "shadow-field",
-                                                   "gi", "svg", "out-dir", "backend"},
-                                                  {"help"}));
+  DDGI_ASSIGN_OR_RETURN(
+      Flags flags,
+      Flags::parse(argc, argv,
+                   {"width", "height", "spp", "full-spp", "warmup", "frames", "resolutions",
+                    "light-samples", "shadow-field", "gi", "svg", "out-dir", "backend"},
+                   {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -397,12 +418,14 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 480, 11, 16384));
   DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 270, 11, 16384));
   DDGI_ASSIGN_OR_RETURN(const int64_t spp, flags.get_int("spp", 1024, 1, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(const int64_t full_spp, flags.get_int("full-spp", spp, 1, 1 << 20));
   DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 64, 0, 100000));
   DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 10, 1, 10000));
   DDGI_ASSIGN_OR_RETURN(const int64_t samples, flags.get_int("light-samples", 1, 1, 64));
   o.width = static_cast<uint32_t>(width);
   o.height = static_cast<uint32_t>(height);
   o.spp = static_cast<uint32_t>(spp);
+  o.full_spp = static_cast<uint32_t>(full_spp);
   o.warmup = static_cast<uint32_t>(warmup);
   o.frames = static_cast<uint32_t>(frames);
   o.light_samples = static_cast<uint32_t>(samples);
@@ -425,11 +448,11 @@ Status run(int argc, char** argv) {
   options.backend = forced_backend;
   DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
   std::printf(
-      "device: %s (%s), backend %s, %ux%u, reference %u spp, %u warm-up updates, %u frames, GI "
-      "%s\n\n",
+      "device: %s (%s), backend %s, %ux%u, references %u spp (direct) and %u spp (full), %u "
+      "warm-up updates, %u frames, GI %s\n\n",
       context->caps().device_name.c_str(), context->caps().driver_name.c_str(),
-      vk::backend_name(context->default_backend()), o.width, o.height, o.spp, o.warmup, o.frames,
-      gi.c_str());
+      vk::backend_name(context->default_backend()), o.width, o.height, o.spp, o.full_spp, o.warmup,
+      o.frames, gi.c_str());
   std::printf(
       "| scene | mode | shadow field | MiB | direct: PSNR | SSIM | FLIP | full: PSNR | SSIM | FLIP "
       "| direct ms | frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
