@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds what runs on a GPU host without our libraries (the lent H100, a lean container):
+# Builds what runs on a GPU host without our libraries (the lent H100/H200, a lean container):
 # Release binaries, their SPIR-V, and the non-glibc part of their shared-library closure,
 # into .devcarry/ (ignored by git). With --scenes, also copies ../shared/scenes beside it,
 # since only the repository travels. Usage: deploy/gpu-bundle.sh [--scenes] [targets...]
@@ -8,14 +8,16 @@ cd "$(dirname "$0")/.."
 with_scenes=0
 if [ "${1:-}" = "--scenes" ]; then with_scenes=1; shift; fi
 targets=("${@:-ddgi-render ddgi-bench}")
+# Client tools are configured too, so ddgi-client-lean (no OpenImageIO) can be bundled.
 cmake -S . -B build-rel -G Ninja -DCMAKE_BUILD_TYPE=Release -DDDGI_BUILD_TESTS=OFF \
-  -DDDGI_BUILD_CLIENT=OFF >/dev/null
+  -DDDGI_BUILD_CLIENT=ON >/dev/null
 # shellcheck disable=SC2068
 ninja -C build-rel ${targets[@]}
 rm -rf .devcarry/bin .devcarry/lib
 mkdir -p .devcarry/bin .devcarry/lib
 # shellcheck disable=SC2068
 for t in ${targets[@]}; do cp build-rel/"$t" .devcarry/bin/; done
+strip .devcarry/bin/ddgi-*
 cp -r build-rel/spirv .devcarry/bin/spirv
 rm -f .devcarry/bin/spirv/*.d
 # glibc itself comes from the host (newer there); everything else travels.

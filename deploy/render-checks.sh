@@ -7,7 +7,8 @@ out="$1"
 shift
 mkdir -p "$out"
 render=${DDGI_RENDER:-ddgi-render}
-scenes=(scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/box_on_floor.gltf
+scenes=(scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/two_rooms_closed.gltf
+        scenes/box_on_floor.gltf scenes/white_box.gltf
         scenes/cornell_kajiya.ddgi.json scenes/cornell_nvpro.ddgi.json
         scenes/lights_punctual.ddgi.json scenes/veach_ajar.ddgi.json scenes/staircase.ddgi.json
         scenes/modern_hall.ddgi.json scenes/living_room.ddgi.json)

@@ -12,7 +12,9 @@
 # "1280x720 1920x1080"), SECONDS_PER_RUN (10), ENCODE_THREADS (8), WARMUP (32).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-carry=build-svc-carry
+# CARRY: a bundle with bin/ (ddgi-server, ddgi-client-lean, spirv/), lib/ and scenes/; `run`
+# also takes deploy/gpu-bundle.sh's .devcarry (CARRY=.devcarry).
+carry=${CARRY:-build-svc-carry}
 
 bundle() {
   cmake -S . -B build-svc-rel -G Ninja -DCMAKE_BUILD_TYPE=Release -DDDGI_BUILD_TESTS=OFF \
