@@ -169,7 +169,22 @@ Status Context::init(const ContextOptions& options) {
   std::vector<VkExtensionProperties> instance_exts(ext_count);
   vkEnumerateInstanceExtensionProperties(nullptr, &ext_count, instance_exts.data());
   std::vector<const char*> enabled_instance_exts;
-  const bool debug_utils = has_extension(instance_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  bool debug_utils = has_extension(instance_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (options.validation && !debug_utils) {
+    // The validation layer may be the one providing the extension.
+    uint32_t layer_ext_count = 0;
+    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, nullptr);
+    std::vector<VkExtensionProperties> layer_exts(layer_ext_count);
+    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, layer_exts.data());
+    debug_utils = has_extension(layer_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  if (options.validation && !debug_utils) {
+    // Without a messenger the layer's findings reach no counter, and a "no validation
+    // messages" check would pass whatever happens.
+    return failed_precondition(
+        "validation requested but VK_EXT_debug_utils is not available, so validation messages "
+        "could not be counted");
+  }
   if (debug_utils) enabled_instance_exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -195,15 +210,19 @@ Status Context::init(const ContextOptions& options) {
   instance_info.ppEnabledExtensionNames = enabled_instance_exts.data();
   if (options.validation && debug_utils) instance_info.pNext = &messenger_info;
   VK_TRY(vkCreateInstance(&instance_info, nullptr, &instance_));
-  validation_enabled_ = options.validation;
 
   if (options.validation && debug_utils) {
     auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    if (create_messenger) {
-      VK_TRY(create_messenger(instance_, &messenger_info, nullptr, &messenger_));
+    if (!create_messenger) {
+      return failed_precondition(
+          "validation requested but vkCreateDebugUtilsMessengerEXT is missing, so validation "
+          "messages could not be counted");
     }
+    VK_TRY(create_messenger(instance_, &messenger_info, nullptr, &messenger_));
   }
+  // On only with a messenger that counts what the layer reports.
+  validation_enabled_ = messenger_ != VK_NULL_HANDLE;
 
   // Physical device: the first that can trace (matching the filter), discrete GPUs first.
   uint32_t device_count = 0;

@@ -106,6 +106,7 @@ class Context {
 
   // Validation messages (warnings and errors) seen since creation; tests require zero.
   uint32_t validation_message_count() const { return validation_messages_.load(); }
+  // True when the validation layer is on and its messages reach the counter above.
   bool validation_enabled() const { return validation_enabled_; }
 
  private:
