@@ -105,7 +105,8 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   return caps;
 }
 
-// Names what a device lacks for ray tracing at all ("" when it can trace one way or another).
+}  // namespace
+
 std::string missing_for_tracing(const DeviceCapabilities& caps) {
   if (!caps.buffer_device_address) return "bufferDeviceAddress (Vulkan 1.2)";
   if (!caps.acceleration_structure)
@@ -116,7 +117,32 @@ std::string missing_for_tracing(const DeviceCapabilities& caps) {
   return "";
 }
 
-}  // namespace
+Status backend_supported(const DeviceCapabilities& caps, TraceBackend backend) {
+  if (backend == TraceBackend::kRayQuery && !caps.ray_query) {
+    return failed_precondition("backend 'query' needs VK_KHR_ray_query, which " + caps.device_name +
+                               " does not support; use --backend pipeline");
+  }
+  if (backend == TraceBackend::kPipeline && !caps.ray_tracing_pipeline) {
+    return failed_precondition("backend 'pipeline' needs VK_KHR_ray_tracing_pipeline, which " +
+                               caps.device_name + " does not support; use --backend query");
+  }
+  return ok_status();
+}
+
+Result<TraceBackend> choose_backend(const DeviceCapabilities& caps,
+                                    std::optional<TraceBackend> forced) {
+  // A device that cannot trace at all gets the one message that names everything it lacks,
+  // not advice to switch to another backend it does not have either.
+  const std::string missing = missing_for_tracing(caps);
+  if (!missing.empty()) {
+    return failed_precondition(caps.device_name + " cannot trace rays: it lacks " + missing);
+  }
+  if (forced) {
+    DDGI_TRY(backend_supported(caps, *forced));
+    return *forced;
+  }
+  return caps.ray_query ? TraceBackend::kRayQuery : TraceBackend::kPipeline;
+}
 
 const char* backend_name(TraceBackend backend) {
   return backend == TraceBackend::kRayQuery ? "query" : "pipeline";
@@ -268,12 +294,7 @@ Status Context::init(const ContextOptions& options) {
   }
 
   // Backend.
-  if (options.backend) {
-    default_backend_ = *options.backend;
-    DDGI_TRY(check_backend(default_backend_));
-  } else {
-    default_backend_ = caps_.ray_query ? TraceBackend::kRayQuery : TraceBackend::kPipeline;
-  }
+  DDGI_ASSIGN_OR_RETURN(default_backend_, choose_backend(caps_, options.backend));
 
   // Queue family with compute.
   uint32_t family_count = 0;
@@ -403,15 +424,7 @@ Context::~Context() {
 }
 
 Status Context::check_backend(TraceBackend backend) const {
-  if (backend == TraceBackend::kRayQuery && !caps_.ray_query) {
-    return failed_precondition("backend 'query' needs VK_KHR_ray_query, which " +
-                               caps_.device_name + " does not support; use --backend pipeline");
-  }
-  if (backend == TraceBackend::kPipeline && !caps_.ray_tracing_pipeline) {
-    return failed_precondition("backend 'pipeline' needs VK_KHR_ray_tracing_pipeline, which " +
-                               caps_.device_name + " does not support; use --backend query");
-  }
-  return ok_status();
+  return backend_supported(caps_, backend);
 }
 
 void Context::set_name(uint64_t handle, VkObjectType type, const std::string& name) const {
