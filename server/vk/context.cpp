@@ -105,7 +105,8 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   return caps;
 }
 
-// Names what a device lacks for ray tracing at all ("" when it can trace one way or another).
+}  // namespace
+
 std::string missing_for_tracing(const DeviceCapabilities& caps) {
   if (!caps.buffer_device_address) return "bufferDeviceAddress (Vulkan 1.2)";
   if (!caps.acceleration_structure)
@@ -116,7 +117,32 @@ std::string missing_for_tracing(const DeviceCapabilities& caps) {
   return "";
 }
 
-}  // namespace
+Status backend_supported(const DeviceCapabilities& caps, TraceBackend backend) {
+  if (backend == TraceBackend::kRayQuery && !caps.ray_query) {
+    return failed_precondition("backend 'query' needs VK_KHR_ray_query, which " + caps.device_name +
+                               " does not support; use --backend pipeline");
+  }
+  if (backend == TraceBackend::kPipeline && !caps.ray_tracing_pipeline) {
+    return failed_precondition("backend 'pipeline' needs VK_KHR_ray_tracing_pipeline, which " +
+                               caps.device_name + " does not support; use --backend query");
+  }
+  return ok_status();
+}
+
+Result<TraceBackend> choose_backend(const DeviceCapabilities& caps,
+                                    std::optional<TraceBackend> forced) {
+  // A device that cannot trace at all gets the one message that names everything it lacks,
+  // not advice to switch to another backend it does not have either.
+  const std::string missing = missing_for_tracing(caps);
+  if (!missing.empty()) {
+    return failed_precondition(caps.device_name + " cannot trace rays: it lacks " + missing);
+  }
+  if (forced) {
+    DDGI_TRY(backend_supported(caps, *forced));
+    return *forced;
+  }
+  return caps.ray_query ? TraceBackend::kRayQuery : TraceBackend::kPipeline;
+}
 
 const char* backend_name(TraceBackend backend) {
   return backend == TraceBackend::kRayQuery ? "query" : "pipeline";
@@ -169,7 +195,22 @@ Status Context::init(const ContextOptions& options) {
   std::vector<VkExtensionProperties> instance_exts(ext_count);
   vkEnumerateInstanceExtensionProperties(nullptr, &ext_count, instance_exts.data());
   std::vector<const char*> enabled_instance_exts;
-  const bool debug_utils = has_extension(instance_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  bool debug_utils = has_extension(instance_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (options.validation && !debug_utils) {
+    // The validation layer may be the one providing the extension.
+    uint32_t layer_ext_count = 0;
+    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, nullptr);
+    std::vector<VkExtensionProperties> layer_exts(layer_ext_count);
+    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, layer_exts.data());
+    debug_utils = has_extension(layer_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  if (options.validation && !debug_utils) {
+    // Without a messenger the layer's findings reach no counter, and a "no validation
+    // messages" check would pass whatever happens.
+    return failed_precondition(
+        "validation requested but VK_EXT_debug_utils is not available, so validation messages "
+        "could not be counted");
+  }
   if (debug_utils) enabled_instance_exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -195,15 +236,19 @@ Status Context::init(const ContextOptions& options) {
   instance_info.ppEnabledExtensionNames = enabled_instance_exts.data();
   if (options.validation && debug_utils) instance_info.pNext = &messenger_info;
   VK_TRY(vkCreateInstance(&instance_info, nullptr, &instance_));
-  validation_enabled_ = options.validation;
 
   if (options.validation && debug_utils) {
     auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    if (create_messenger) {
-      VK_TRY(create_messenger(instance_, &messenger_info, nullptr, &messenger_));
+    if (!create_messenger) {
+      return failed_precondition(
+          "validation requested but vkCreateDebugUtilsMessengerEXT is missing, so validation "
+          "messages could not be counted");
     }
+    VK_TRY(create_messenger(instance_, &messenger_info, nullptr, &messenger_));
   }
+  // On only with a messenger that counts what the layer reports.
+  validation_enabled_ = messenger_ != VK_NULL_HANDLE;
 
   // Physical device: the first that can trace (matching the filter), discrete GPUs first.
   uint32_t device_count = 0;
@@ -249,12 +294,7 @@ Status Context::init(const ContextOptions& options) {
   }
 
   // Backend.
-  if (options.backend) {
-    default_backend_ = *options.backend;
-    DDGI_TRY(check_backend(default_backend_));
-  } else {
-    default_backend_ = caps_.ray_query ? TraceBackend::kRayQuery : TraceBackend::kPipeline;
-  }
+  DDGI_ASSIGN_OR_RETURN(default_backend_, choose_backend(caps_, options.backend));
 
   // Queue family with compute.
   uint32_t family_count = 0;
@@ -384,15 +424,7 @@ Context::~Context() {
 }
 
 Status Context::check_backend(TraceBackend backend) const {
-  if (backend == TraceBackend::kRayQuery && !caps_.ray_query) {
-    return failed_precondition("backend 'query' needs VK_KHR_ray_query, which " +
-                               caps_.device_name + " does not support; use --backend pipeline");
-  }
-  if (backend == TraceBackend::kPipeline && !caps_.ray_tracing_pipeline) {
-    return failed_precondition("backend 'pipeline' needs VK_KHR_ray_tracing_pipeline, which " +
-                               caps_.device_name + " does not support; use --backend query");
-  }
-  return ok_status();
+  return backend_supported(caps_, backend);
 }
 
 void Context::set_name(uint64_t handle, VkObjectType type, const std::string& name) const {

@@ -43,6 +43,18 @@ struct DeviceCapabilities {
   uint32_t max_compute_workgroup_count_x = 65535;
 };
 
+// The pure part of device and backend selection, kept free of Vulkan calls so that unit tests
+// can cover devices this machine does not have.
+// Names what a device lacks to trace rays at all ("" when it can trace one way or another).
+std::string missing_for_tracing(const DeviceCapabilities& caps);
+// Errors when a device with `caps` cannot run `backend`, naming the missing extension.
+Status backend_supported(const DeviceCapabilities& caps, TraceBackend backend);
+// The backend a device with `caps` runs: `forced` when given (an error when the device lacks
+// it), else ray queries when present, else ray-tracing pipelines. A device with neither is an
+// error naming what is missing.
+Result<TraceBackend> choose_backend(const DeviceCapabilities& caps,
+                                    std::optional<TraceBackend> forced);
+
 struct ContextOptions {
   bool validation = false;              // VK_LAYER_KHRONOS_validation; always on in tests
   std::string device_filter;            // substring of the device name; empty: best device
@@ -106,6 +118,7 @@ class Context {
 
   // Validation messages (warnings and errors) seen since creation; tests require zero.
   uint32_t validation_message_count() const { return validation_messages_.load(); }
+  // True when the validation layer is on and its messages reach the counter above.
   bool validation_enabled() const { return validation_enabled_; }
 
  private:

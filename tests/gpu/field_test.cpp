@@ -8,6 +8,7 @@
 #include "render/gpu_scene.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
+#include "tests/gpu/white_box.h"
 
 namespace ddgi::test {
 namespace {
@@ -41,8 +42,9 @@ std::vector<IrradianceQuery> furnace_queries() {
   return queries;
 }
 
-// White furnace: every surface emits Le and reflects rho, so radiance is Le / (1 - rho)
-// everywhere and the field's M (= E / pi) must converge to it.
+// White furnace in the repo's closed white box (scenes/white_box.gltf, albedo and emission set
+// in memory): every surface emits Le and reflects rho, so radiance is Le / (1 - rho) everywhere
+// and the field's M (the cosine-weighted mean radiance, E / pi) must converge to it.
 class FurnaceTest : public FieldTest,
                     public ::testing::WithParamInterface<std::tuple<float, vk::TraceBackend>> {};
 
@@ -55,16 +57,21 @@ TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
   params.counts = {2, 2, 2};
   params.rays_per_probe = 64;
   params.hysteresis = 0.5f;  // converge in few updates; the bounce series needs ~log(0.01)/log(rho)
-  Setup s = make(make_white_furnace_box(rho, le), params, backend);
+  Setup s = make(load_white_box(rho, le), params, backend);
   // Each update adds one bounce: after n updates the error is about rho^n.
   const uint32_t updates = static_cast<uint32_t>(std::ceil(std::log(0.002) / std::log(rho))) + 12;
   ASSERT_TRUE(s.field->update(updates, DirectMode::kTracedShadows).ok());
   auto answers = s.field->query(furnace_queries());
   ASSERT_TRUE(answers.ok()) << answers.error().message;
   const float expected = le / (1.0f - rho);
+  ASSERT_EQ(answers->size(), 18u);
+  float worst = 0.0f;
   for (const glm::vec3& m : *answers) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], expected, 0.02f * expected);
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(m[c] - expected) / expected);
   }
+  // The acceptance's 2%. Measured worst relative error, the same on both backends: 1.0e-4
+  // (rho 0.2), 1.7e-3 (0.5), 1.4e-2 (0.8; the update count leaves about rho^n of the series).
+  EXPECT_LE(worst, 0.02f) << "rho " << rho << ", expected " << expected;
 }
 
 // The field after several updates (multiple bounces, shadow rays, visibility feedback) is the
