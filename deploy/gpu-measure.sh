@@ -4,8 +4,9 @@
 #   ddgi-shadow-eval ddgi-server ddgi-client-lean; carry .devcarry and .gl there, then, in the
 # repository root:
 #
-#   deploy/gpu-measure.sh fields OUT    # render checks (vs lavapipe), the thesis-table field
-#                                       # benchmark, field quality vs the path-traced reference
+#   deploy/gpu-measure.sh fields OUT    # render checks (vs lavapipe), per-pass times at 1080p,
+#                                       # the thesis-table field benchmark, field quality vs
+#                                       # the path-traced reference
 #   deploy/gpu-measure.sh shadows OUT   # direct-light modes vs the reference, the streaming
 #                                       # service benchmark
 #
@@ -39,6 +40,9 @@ case "$part" in
     tar -C "$out/checks" -czf "$out/checks-direct.tgz" $(cd "$out/checks" && ls *.direct.*)
     tar -C "$out/checks" -czf "$out/checks-gi.tgz" $(cd "$out/checks" && ls *.gi.*)
     rm -rf "$out/checks"
+    run_step render1080 bash -c 'for s in scenes/*.gltf scenes/*.ddgi.json; do echo "## $s";
+      ddgi-render "$s" --width 1920 --height 1080 --frames 20 --warmup 16 --backend pipeline \
+        --out /tmp/frame.png --log-level warning; done'
     # The thesis's Table 7.3/7.4 setup: no culling, 8x8 maps, no fixed rays.
     run_step bench ddgi-bench scenes/staircase.ddgi.json scenes/veach_ajar.ddgi.json \
       --grids "16x16x16;32x16x32;32x32x32" --rays 64,128,256,512 --frames 20 --warmup 8 \

@@ -28,6 +28,12 @@ Status in_range(const char* name, T value, T min, T max) {
 
 }  // namespace
 
+float visibility_range(glm::vec3 spacing) {
+  const double diagonal = std::sqrt(double(spacing.x) * spacing.x + double(spacing.y) * spacing.y +
+                                    double(spacing.z) * spacing.z);
+  return static_cast<float>(std::min(1.5 * diagonal, 1e17));
+}
+
 uint64_t probe_count(const IrradianceFieldParams& p) {
   return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
          uint64_t(std::max(p.counts.z, 0));

@@ -138,6 +138,12 @@ IrradianceFieldParams default_field_params(const Scene& scene);
 
 uint64_t probe_count(const IrradianceFieldParams& params);
 
+// Hit distances in a field's moments atlas (irradiance and shadow fields) are clamped to this:
+// 1.5 x the cell diagonal, the reach of a probe's visibility, and at most 1e17 so that weighted
+// sums of squared distances over 1024 rays stay inside fp32 (1024 x 1e34 < 3.4e38) however
+// huge the spacing (computed in double: the diagonal alone can overflow a float).
+float visibility_range(glm::vec3 spacing);
+
 // Where each probe's maps live in the two atlases (see shaders/shared/field_data.h).
 struct AtlasLayout {
   uint32_t tiles_per_row = 1;

@@ -394,7 +394,7 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.energy_conservation = params_.energy_conservation;
   c.weight_crush_threshold = params_.weight_crush_threshold;
   c.max_ray_distance = params_.max_ray_distance;
-  c.max_visibility_distance = 1.5f * glm::length(params_.spacing);
+  c.max_visibility_distance = visibility_range(params_.spacing);
   c.ray_rotation = random_rotation(params_.seed, update_index_);
   c.direct_mode = static_cast<uint32_t>(direct_mode);
   c.probe_offset_limit = params_.probe_offset_limit;

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "gi/field_params.h"
+
 namespace ddgi {
 namespace {
 
@@ -259,7 +261,7 @@ gpu::ShadowFieldConstants ShadowField::constants(DirectMode direct_mode) const {
   c.view_bias = params_.view_bias;
   c.sharpening = params_.sharpening;
   c.max_ray_distance = params_.max_ray_distance;
-  c.max_visibility_distance = 1.5f * glm::length(params_.spacing);
+  c.max_visibility_distance = visibility_range(params_.spacing);
   c.ao_distance = params_.ao_distance;
   c.weight_crush_threshold = params_.weight_crush_threshold;
   c.backface_distance_scale = params_.backface_distance_scale;

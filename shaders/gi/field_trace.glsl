@@ -16,8 +16,16 @@ void main() {
   const uint id = probe * rays_per_probe_total() + r;
   const vec3 origin = probe_position(probe);
   const vec3 direction = probe_ray_direction(r);
-  // Back faces are never culled: relocation and classification count them.
-  const Hit hit = trace_closest(origin, direction, 0.0, field.max_ray_distance);
+  // Back faces are never culled: relocation and classification count them. Fixed rays start a
+  // hair behind the probe: a probe lying exactly in a surface's plane never hits that surface
+  // from its own position, so it would be neither moved off it nor switched Off; starting
+  // behind, it sees the surface at distance ~0, a front face one way and a back face the other,
+  // and relocation lifts it off (or classification turns it Off).
+  const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+  const float behind = r < field.fixed_rays ? 1e-3 * min_spacing : 0.0;
+  Hit hit =
+      trace_closest(origin - behind * direction, direction, 0.0, field.max_ray_distance + behind);
+  if (hit.t >= 0.0) hit.t = max(hit.t - behind, 0.0);
 
   ProbeRay ray;
   ray.radiance = vec3(0.0);

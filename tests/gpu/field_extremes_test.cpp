@@ -402,14 +402,10 @@ TEST_P(FurnaceExtremesTest, SingleProbeGridGivesTheFurnaceValue) {
 
 // A probe layer in the floor plane below two layers inside the box. Radiance inside is uniform,
 // so queries facing up (on the floor and inside) must give Le / (1 - rho) wherever the probes
-// are. With the layer 1 mm above or below the floor (relocation or the Off state take care of
-// it) they do, to float rounding.
-//
-// Exactly in the plane they do not: such a probe's rays never hit the plane it sits on, so it
-// is neither relocated nor switched Off, and its texels facing down see outside the box
-// (black). Walls next to the floor then read too little light and every bounce carries the
-// deficit. Measured: up to 12.4% low (1.75 instead of 2 on the floor); the bound below guards
-// that value until the field handles the case, when it should become the 2% of the others.
+// are: 1 mm above or below the floor, or exactly in its plane. A probe's own rays never hit the
+// plane it sits in; its fixed rays start a hair behind it (field_trace.glsl) so that it sees the
+// floor anyway and relocation lifts it off. Without that the layer saw the outside of the box
+// through the floor (black) and everything read up to 12.4% low.
 TEST_P(FurnaceExtremesTest, ProbesOnTheFloorPlaneGiveTheFurnaceValueFacingUp) {
   const float rho = 0.5f, le = 1.0f;
   std::vector<IrradianceQuery> up;
@@ -426,9 +422,8 @@ TEST_P(FurnaceExtremesTest, ProbesOnTheFloorPlaneGiveTheFurnaceValueFacingUp) {
     params.hysteresis = 0.0f;
     const Run run = converge(load_white_box(rho, le), params, up, 24, false, GetParam());
     expect_finite_positive(run.answers);
-    // Measured: 1e-6 at +-1 mm; 0.124 exactly in the plane (see above).
-    const float tolerance = floor_y == 0.0f ? 0.15f : 1e-3f;
-    EXPECT_LE(worst_relative_error(run.answers, le / (1.0f - rho)), tolerance)
+    // Measured: 1e-6 at +-1 mm and exactly in the plane.
+    EXPECT_LE(worst_relative_error(run.answers, le / (1.0f - rho)), 1e-3f)
         << "probe layer at y = " << floor_y;
   }
 }
@@ -445,6 +440,18 @@ TEST_F(FieldExtremesTest, SingleProbeAndOnSurfaceGridsStayFiniteInTheCornellBox)
   IrradianceFieldParams on_floor = cornell_grid();
   on_floor.origin = {-0.75f, 0.0f, -0.75f};
   expect_finite_positive(converge(make_cornell_box(), on_floor, cornell_queries()).answers);
+}
+
+// A spacing so large that squared distances would leave fp32 (the cell diagonal is 1.7e20):
+// distances are clamped to visibility_range (at most 1e17), so the moments atlas stays finite
+// (before the clamp: 324 infinite distance texels) and the field still answers.
+TEST_F(FieldExtremesTest, HugeSpacingKeepsTheDistanceMomentsFinite) {
+  IrradianceFieldParams huge = cornell_grid();
+  huge.spacing = glm::vec3(1e20f);
+  huge.origin = {0.0f, 1.0f, 0.0f};
+  huge.counts = {2, 2, 2};
+  EXPECT_FLOAT_EQ(visibility_range(huge.spacing), 1e17f);
+  expect_finite_positive(converge(make_cornell_box(), huge, cornell_queries(), 4).answers);
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ class ProbeManagementTest : public GpuTest {
 //   faces, so (2021 paper, sec. 4.1) they carry no light and shortened distances and cannot
 //   leak light; the floor probes darken the lit side. Relocation moves them all out: the lit
 //   side recovers, and the relocated wall probes, 0.2 m in front of the wall, let a small leak
-//   through (0.17%, under 1%).
+//   through (0.12%, under 1%).
 // docs/probe-management.md lists the measured values.
 TEST_F(ProbeManagementTest, RelocationMovesProbesOutOfTheWallAndTheFloor) {
   auto scene = load_scene(std::string(DDGI_SOURCE_DIR) + "/scenes/two_rooms_closed.gltf");
@@ -113,8 +113,8 @@ TEST_F(ProbeManagementTest, RelocationMovesProbesOutOfTheWallAndTheFloor) {
   const Measure floor_stuck = measure(in_floor), floor_relocated = measure(managed(in_floor));
   report("in the floor", floor_stuck, floor_relocated);
   EXPECT_LT(floor_stuck.beside_wall, 0.95f * clean.beside_wall);         // 0.868 vs 0.962
-  EXPECT_GT(floor_relocated.beside_wall, 0.98f * clean.beside_wall);     // 0.967
-  EXPECT_LT(floor_relocated.dark_ratio, 0.5f * floor_stuck.dark_ratio);  // 0.0016% vs 0.0046%
+  EXPECT_GT(floor_relocated.beside_wall, 0.98f * clean.beside_wall);     // 0.974
+  EXPECT_LT(floor_relocated.dark_ratio, 0.5f * floor_stuck.dark_ratio);  // 0.0004% vs 0.0046%
 
   const IrradianceFieldParams hugging = placed(-4.05f, 0.25f);  // plane 8 at x = -0.05
   const Measure hug_stuck = measure(hugging), hug_relocated = measure(managed(hugging));
@@ -128,9 +128,9 @@ TEST_F(ProbeManagementTest, RelocationMovesProbesOutOfTheWallAndTheFloor) {
   // The shadow leak: stuck probes darken the lit side; relocation removes most of the error.
   EXPECT_LT(wall_stuck.beside_wall, 0.95f * clean.beside_wall);  // 0.890
   EXPECT_LT(std::abs(wall_relocated.beside_wall - clean.beside_wall),
-            0.5f * std::abs(wall_stuck.beside_wall - clean.beside_wall));  // 0.966
+            0.5f * std::abs(wall_stuck.beside_wall - clean.beside_wall));  // 0.964
   EXPECT_LT(wall_stuck.dark_ratio, 0.01f);       // 0.00004%: probes in the wall carry no light
-  EXPECT_LT(wall_relocated.dark_ratio, 0.003f);  // 0.17%
+  EXPECT_LT(wall_relocated.dark_ratio, 0.003f);  // 0.12%
 
   // Every probe of the wall plane left the wall, every probe of the floor plane rose above it.
   ASSERT_FALSE(states.empty());
