@@ -533,7 +533,8 @@ void Session::add_light(v1::Light light, v1::LightReply* reply, Completion done)
         if (lights_.size() >= env_.limits->max_lights) {
           return resource_exhausted("session " + id_ + " already has " +
                                     std::to_string(lights_.size()) +
-                                    " lights, the most allowed (--max-lights)");
+                                    " lights, the most allowed (--max-lights " +
+                                    std::to_string(env_.limits->max_lights) + ")");
         }
         DDGI_ASSIGN_OR_RETURN(const Light value, light_from_proto(light, Light{}));
         lights_.push_back({next_light_id_, value});

@@ -1,7 +1,5 @@
 // End to end over loopback: sessions, views, camera, lights, instances, field parameters,
 // frames (unary and streamed), atlases, queries, reflection and metrics.
-#include <grpcpp/generic/generic_stub.h>
-
 #include <cmath>
 #include <cstring>
 
@@ -13,6 +11,7 @@
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tests/service/glb_builder.h"
+#include "tests/service/reflection_probe.h"
 #include "tests/service/service_fixture.h"
 
 namespace ddgi::test {
@@ -573,40 +572,12 @@ TEST_F(E2eTest, DisconnectMidStreamLeavesNoLeak) {
   EXPECT_EQ(server().metrics().sessions.load(), 0);
 }
 
-// Reflection answers list_services; built by hand (the reflection client is not packaged).
+// Reflection answers list_services (off with --no-reflection: ServiceLimitsProcessTest).
 TEST_F(E2eTest, ReflectionListsServices) {
-  grpc::GenericStub generic(channel_);
-  grpc::ClientContext ctx;
-  grpc::CompletionQueue cq;
-  auto call = generic.PrepareCall(
-      &ctx, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo", &cq);
-  call->StartCall(reinterpret_cast<void*>(1));
-  void* tag;
-  bool ok;
-  ASSERT_TRUE(cq.Next(&tag, &ok) && ok);
-  // ServerReflectionRequest { list_services = "" } : field 7, length-delimited, empty.
-  const char request_bytes[] = {0x3a, 0x00};
-  grpc::Slice slice(request_bytes, sizeof(request_bytes));
-  grpc::ByteBuffer request(&slice, 1);
-  call->Write(request, reinterpret_cast<void*>(2));
-  ASSERT_TRUE(cq.Next(&tag, &ok) && ok);
-  grpc::ByteBuffer response;
-  call->Read(&response, reinterpret_cast<void*>(3));
-  ASSERT_TRUE(cq.Next(&tag, &ok) && ok);
-  std::vector<grpc::Slice> slices;
-  ASSERT_TRUE(response.Dump(&slices).ok());
-  std::string text;
-  for (const auto& s : slices) text.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  EXPECT_NE(text.find("ddgi.v1.RenderService"), std::string::npos);
-  EXPECT_NE(text.find("grpc.health.v1.Health"), std::string::npos);
-  ctx.TryCancel();
-  grpc::Status status;
-  call->Finish(&status, reinterpret_cast<void*>(4));
-  while (cq.Next(&tag, &ok) && tag != reinterpret_cast<void*>(4)) {
-  }
-  cq.Shutdown();
-  while (cq.Next(&tag, &ok)) {
-  }
+  const ReflectionAnswer answer = list_services(channel_);
+  ASSERT_TRUE(answer.status.ok()) << answer.status.error_message();
+  EXPECT_NE(answer.text.find("ddgi.v1.RenderService"), std::string::npos);
+  EXPECT_NE(answer.text.find("grpc.health.v1.Health"), std::string::npos);
 }
 
 TEST_F(E2eTest, MetricsEndpointServesPrometheusText) {
