@@ -639,6 +639,12 @@ void Session::fill_field(v1::FieldParams* params) const {
   params->set_gpu_bytes(field_->gpu_bytes());
   params->set_updates(field_->updates());
   params->set_command_seq(applying_seq_);
+  const ProbeStateCounts counts = field_->probe_counts();
+  v1::ProbeStateCounts* states = params->mutable_probe_states();
+  states->set_vigilant(counts.vigilant);
+  states->set_awake(counts.awake);
+  states->set_sleeping(counts.sleeping);
+  states->set_off(counts.off);
 }
 
 void Session::fill_shadow_field(v1::FieldParams* params) const {
