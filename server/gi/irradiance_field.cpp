@@ -52,6 +52,25 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels;
 }
 
+// Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are
+// freed; the error names the grid, the bytes it needs and what the budget leaves free.
+Status check_budget(const vk::Context& context, const IrradianceFieldParams& params,
+                    uint64_t held_bytes) {
+  const uint64_t needed = field_gpu_bytes(params);
+  const uint64_t limit =
+      context.memory_budget() ? context.memory_budget() : context.caps().device_local_bytes;
+  const uint64_t others =
+      context.allocated_bytes() - std::min(context.allocated_bytes(), held_bytes);
+  if (!limit || others + needed <= limit) return ok_status();
+  return resource_exhausted(
+      "the irradiance field (" + std::to_string(params.counts.x) + "x" +
+      std::to_string(params.counts.y) + "x" + std::to_string(params.counts.z) + " probes, " +
+      std::to_string(params.rays_per_probe + params.fixed_rays) + " rays each) needs " +
+      std::to_string(needed) + " bytes of GPU memory; " +
+      std::to_string(limit - std::min(limit, others)) + " bytes of the " + std::to_string(limit) +
+      "-byte budget are free");
+}
+
 }  // namespace
 
 Result<std::unique_ptr<IrradianceField>> IrradianceField::create(
@@ -130,24 +149,16 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
 }
 
 Status IrradianceField::create_resources() {
-  // Free the old atlases first so the budget sees only the new ones.
+  // Checked before anything is freed, so that a refused grid leaves the field as it was.
+  DDGI_TRY(check_budget(context_, params_, gpu_bytes_));
+  // Free the old resources before allocating, so the budget sees only the new ones (and
+  // gpu_bytes_ below counts only them).
   constants_.reset();
   probes_.reset();
   rays_.reset();
+  probe_list_.reset();
   irradiance_.reset();
   distance_.reset();
-  const uint64_t needed = field_gpu_bytes(params_);
-  const uint64_t limit =
-      context_.memory_budget() ? context_.memory_budget() : context_.caps().device_local_bytes;
-  if (limit && context_.allocated_bytes() + needed > limit) {
-    return resource_exhausted(
-        "the irradiance field (" + std::to_string(params_.counts.x) + "x" +
-        std::to_string(params_.counts.y) + "x" + std::to_string(params_.counts.z) + " probes, " +
-        std::to_string(params_.rays_per_probe + params_.fixed_rays) + " rays each) needs " +
-        std::to_string(needed) + " bytes of GPU memory; " +
-        std::to_string(limit - std::min(limit, context_.allocated_bytes())) +
-        " bytes of the budget are free");
-  }
 
   const uint64_t before = context_.allocated_bytes();
   layout_ = atlas_layout(params_);
@@ -356,11 +367,15 @@ Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
 
 Status IrradianceField::set_params(const IrradianceFieldParams& params) {
   DDGI_TRY(validate(params));
+  const bool rebuild = grid_changed(params_, params);
+  // A refused grid changes nothing: the old field and its history keep running.
+  if (rebuild) DDGI_TRY(check_budget(context_, params, gpu_bytes_));
   const IrradianceFieldParams old = params_;
   params_ = params;
-  Status status = grid_changed(old, params) ? create_resources() : ok_status();
+  Status status = rebuild ? create_resources() : ok_status();
   if (!status.ok()) {
-    // Keep serving with the old field: nothing is lost on a refused change.
+    // An allocation failed after the old resources were freed (another session took memory
+    // meanwhile): the old grid again, starting over, is the best left.
     params_ = old;
     DDGI_TRY(create_resources());
     return status.error();

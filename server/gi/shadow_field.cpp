@@ -56,6 +56,25 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// Whether a shadow field of `params` fits the GPU budget once the `held_bytes` it replaces are
+// freed; the error names the grid, the bytes it needs and what the budget leaves free.
+Status check_budget(const vk::Context& context, const ShadowFieldParams& params,
+                    uint64_t held_bytes) {
+  const uint64_t needed = shadow_field_gpu_bytes(params);
+  const uint64_t limit =
+      context.memory_budget() ? context.memory_budget() : context.caps().device_local_bytes;
+  const uint64_t others =
+      context.allocated_bytes() - std::min(context.allocated_bytes(), held_bytes);
+  if (!limit || others + needed <= limit) return ok_status();
+  return resource_exhausted(
+      "the shadow field (" + std::to_string(params.counts.x) + "x" +
+      std::to_string(params.counts.y) + "x" + std::to_string(params.counts.z) + " probes, " +
+      std::to_string(params.rays_per_probe) + " rays and " + std::to_string(params.texels) +
+      "^2 texels each) needs " + std::to_string(needed) + " bytes of GPU memory; " +
+      std::to_string(limit - std::min(limit, others)) + " bytes of the " + std::to_string(limit) +
+      "-byte budget are free");
+}
+
 }  // namespace
 
 Result<std::unique_ptr<ShadowField>> ShadowField::create(vk::Context& context, GpuScene& scene,
@@ -119,23 +138,13 @@ Status ShadowField::create_layouts_and_kernels(vk::TraceBackend backend) {
 }
 
 Status ShadowField::create_resources() {
-  // Free the old resources first so the budget sees only the new ones.
+  // Checked before anything is freed, so that a refused grid leaves the field as it was.
+  DDGI_TRY(check_budget(context_, params_, gpu_bytes_));
+  // Free the old resources before allocating, so the budget sees only the new ones.
   constants_.reset();
   rays_.reset();
   visibility_.reset();
   moments_.reset();
-  const uint64_t needed = shadow_field_gpu_bytes(params_);
-  const uint64_t limit =
-      context_.memory_budget() ? context_.memory_budget() : context_.caps().device_local_bytes;
-  if (limit && context_.allocated_bytes() + needed > limit) {
-    return resource_exhausted(
-        "the shadow field (" + std::to_string(params_.counts.x) + "x" +
-        std::to_string(params_.counts.y) + "x" + std::to_string(params_.counts.z) + " probes, " +
-        std::to_string(params_.rays_per_probe) + " rays and " + std::to_string(params_.texels) +
-        "^2 texels each) needs " + std::to_string(needed) + " bytes of GPU memory; " +
-        std::to_string(limit - std::min(limit, context_.allocated_bytes())) +
-        " bytes of the budget are free");
-  }
 
   const uint64_t before = context_.allocated_bytes();
   layout_ = shadow_atlas_layout(params_);
@@ -199,11 +208,15 @@ Status ShadowField::reset() {
 
 Status ShadowField::set_params(const ShadowFieldParams& params) {
   DDGI_TRY(validate(params));
+  const bool rebuild = layout_changed(params_, params);
+  // A refused grid changes nothing: the old field and its history keep running.
+  if (rebuild) DDGI_TRY(check_budget(context_, params, gpu_bytes_));
   const ShadowFieldParams old = params_;
   params_ = params;
-  Status status = layout_changed(old, params) ? create_resources() : ok_status();
+  Status status = rebuild ? create_resources() : ok_status();
   if (!status.ok()) {
-    // Keep serving with the old field: nothing is lost on a refused change.
+    // An allocation failed after the old resources were freed (another session took memory
+    // meanwhile): the old grid again, starting over, is the best left.
     params_ = old;
     DDGI_TRY(create_resources());
     return status.error();

@@ -1,5 +1,6 @@
 #include "service/frame_encoder.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/log.h"
@@ -56,12 +57,15 @@ void FrameEncoder::run(EncodeJob& job) {
   Result<std::vector<uint8_t>> jpeg = encode::encode_jpeg(job.image, job.quality);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (jpeg.ok() && job.max_frame_bytes && jpeg->size() + 4096 > job.max_frame_bytes) {
+  // The Frame's other fields (camera, pass times, ids) take well under this.
+  constexpr uint64_t kFrameFieldsBytes = 4096;
+  if (jpeg.ok() && job.max_frame_bytes && jpeg->size() + kFrameFieldsBytes > job.max_frame_bytes) {
+    const uint64_t room = job.max_frame_bytes - std::min(job.max_frame_bytes, kFrameFieldsBytes);
     jpeg = resource_exhausted(
         "a " + std::to_string(job.frame.width()) + "x" + std::to_string(job.frame.height()) +
-        " frame encoded to " + std::to_string(jpeg->size()) +
-        " bytes, more than the message limit of " + std::to_string(job.max_frame_bytes) +
-        " bytes (--max-message-bytes); lower the size or JPEG quality");
+        " frame encoded to " + std::to_string(jpeg->size()) + " bytes; the message limit of " +
+        std::to_string(job.max_frame_bytes) + " bytes (--max-message-bytes) leaves room for " +
+        std::to_string(room) + "; lower the size or JPEG quality");
   }
   if (!jpeg.ok()) {
     LOG_WARNING << "frame encoding failed view=" << job.view_key << ": " << jpeg.error().message;

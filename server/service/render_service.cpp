@@ -232,7 +232,21 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
     }
     DDGI_TRY(check_field_params(request->shadow_field_params(), v1::FIELD_KIND_SHADOW));
     options.shadow_assignments = assignments_of(request->shadow_field_params());
-    DDGI_TRY(sessions_.create(std::move(options), std::move(scene), reply, done));
+    // A client gone (cancelled, or past its deadline) before its session is ready never learns
+    // the id: close the session rather than leave it holding a slot and GPU memory.
+    Completion reply_or_close = [this, context, reply, done](const Status& status) {
+      if (!status.ok() || !context->IsCancelled()) {
+        done(status);
+        return;
+      }
+      const std::string id = reply->session_id();
+      LOG_INFO << "session abandoned session=" << id
+               << ": its client went away before it was ready; closing it";
+      (void)sessions_.close(id, nullptr);
+      done(unavailable("the client went away (cancelled, or past its deadline) before session " +
+                       id + " was ready; the session was closed"));
+    };
+    DDGI_TRY(sessions_.create(std::move(options), std::move(scene), reply, reply_or_close));
     return ok_status();
   });
 }

@@ -2,6 +2,7 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/impl/server_builder_option.h>
 
 #include <algorithm>
 #include <fstream>
@@ -21,6 +22,17 @@ Result<std::string> read_file(const std::string& path, const char* what) {
     return invalid_argument(std::string("the ") + what + " " + path + " is empty");
   return text.str();
 }
+
+// grpc++_reflection adds its plugin to every ServerBuilder as soon as the library is loaded (a
+// static initializer), so turning reflection off means taking the plugin out of the builder.
+class WithoutReflection : public grpc::ServerBuilderOption {
+ public:
+  void UpdateArguments(grpc::ChannelArguments*) override {}
+  void UpdatePlugins(std::vector<std::unique_ptr<grpc::ServerBuilderPlugin>>* plugins) override {
+    const std::string reflection = grpc::reflection::ProtoServerReflectionPlugin().name();
+    std::erase_if(*plugins, [&](const auto& plugin) { return plugin->name() == reflection; });
+  }
+};
 
 }  // namespace
 
@@ -57,6 +69,7 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   grpc::ServerBuilder builder;
   builder.AddListeningPort(options.listen, credentials, &server->port_);
   builder.RegisterService(server->service_.get());
+  if (!options.reflection) builder.SetOption(std::make_unique<WithoutReflection>());
   builder.SetMaxReceiveMessageSize(static_cast<int>(max_receive_bytes(options.limits)));
   builder.SetMaxSendMessageSize(static_cast<int>(options.limits.max_message_bytes));
   // Keepalive: find dead peers of idle streams within ~30 s, and let clients ping idle

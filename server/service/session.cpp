@@ -533,7 +533,8 @@ void Session::add_light(v1::Light light, v1::LightReply* reply, Completion done)
         if (lights_.size() >= env_.limits->max_lights) {
           return resource_exhausted("session " + id_ + " already has " +
                                     std::to_string(lights_.size()) +
-                                    " lights, the most allowed (--max-lights)");
+                                    " lights, the most allowed (--max-lights " +
+                                    std::to_string(env_.limits->max_lights) + ")");
         }
         DDGI_ASSIGN_OR_RETURN(const Light value, light_from_proto(light, Light{}));
         lights_.push_back({next_light_id_, value});
@@ -638,6 +639,12 @@ void Session::fill_field(v1::FieldParams* params) const {
   params->set_gpu_bytes(field_->gpu_bytes());
   params->set_updates(field_->updates());
   params->set_command_seq(applying_seq_);
+  const ProbeStateCounts counts = field_->probe_counts();
+  v1::ProbeStateCounts* states = params->mutable_probe_states();
+  states->set_vigilant(counts.vigilant);
+  states->set_awake(counts.awake);
+  states->set_sleeping(counts.sleeping);
+  states->set_off(counts.off);
 }
 
 void Session::fill_shadow_field(v1::FieldParams* params) const {

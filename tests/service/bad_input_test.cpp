@@ -168,15 +168,37 @@ TEST_F(BadInputTest, OversizedUpload) {
                {"Received message larger than max"});
 }
 
+// The GLB header's total length field (bytes 8..11, little-endian).
+uint32_t glb_length_field(const std::string& glb) {
+  uint32_t value = 0;
+  for (int i = 0; i < 4; ++i) value |= uint32_t(uint8_t(glb[size_t(8 + i)])) << (8 * i);
+  return value;
+}
+
+// Each corruption gets the loader's own reason, with the upload's label and the sizes involved.
 TEST_F(BadInputTest, CorruptGlbUpload) {
   expect_error(upload(std::string(1000, '\x7f')), grpc::StatusCode::INVALID_ARGUMENT,
-               {"upload:1000"});
-  std::string truncated = make_floor_glb();
+               {"upload:1000: not a GLB file (no 'glTF' magic)"});
+  const std::string valid = make_floor_glb();
+  std::string truncated = valid;
   truncated.resize(truncated.size() - 10);
-  expect_error(upload(truncated), grpc::StatusCode::INVALID_ARGUMENT, {"upload:"});
-  std::string lying = make_floor_glb();
+  const std::string truncated_reason = "upload:" + std::to_string(truncated.size()) +
+                                       ": GLB header length " + std::to_string(valid.size()) +
+                                       " does not match the file size " +
+                                       std::to_string(truncated.size());
+  expect_error(upload(truncated), grpc::StatusCode::INVALID_ARGUMENT, {truncated_reason.c_str()});
+  std::string lying = valid;
   lying[8] = '\xff';  // total length field
-  expect_error(upload(lying), grpc::StatusCode::INVALID_ARGUMENT, {"upload:"});
+  const std::string lying_reason = "upload:" + std::to_string(valid.size()) +
+                                   ": GLB header length " +
+                                   std::to_string(glb_length_field(lying)) +
+                                   " does not match the file size " + std::to_string(valid.size());
+  expect_error(upload(lying), grpc::StatusCode::INVALID_ARGUMENT, {lying_reason.c_str()});
+  std::string bad_json = valid;
+  bad_json[20] = 'x';  // the JSON chunk's opening brace
+  const std::string json_reason = "upload:" + std::to_string(valid.size()) + ": invalid JSON";
+  expect_error(upload(bad_json), grpc::StatusCode::INVALID_ARGUMENT,
+               {json_reason.c_str(), "parse error at line 1, column 1"});
   expect_error(upload(""), grpc::StatusCode::INVALID_ARGUMENT, {"scene.glb is empty"});
 }
 
@@ -261,13 +283,15 @@ TEST_F(BadInputTest, NanInfInLight) {
 }
 
 TEST_F(BadInputTest, FieldParametersOutOfRange) {
+  // Each names the parameter, its range and the value refused.
   expect_error(set_params({{"hysteresis", "1.5"}}), grpc::StatusCode::INVALID_ARGUMENT,
-               {"hysteresis"});
+               {"hysteresis must be in [0, 0.999] (got 1.5)"});
   expect_error(set_params({{"rays_per_probe", "0"}}), grpc::StatusCode::INVALID_ARGUMENT,
-               {"rays_per_probe"});
-  expect_error(set_params({{"counts", "0,2,2"}}), grpc::StatusCode::INVALID_ARGUMENT, {"counts"});
+               {"rays_per_probe must be in [1, 1024] (got 0)"});
+  expect_error(set_params({{"counts", "0,2,2"}}), grpc::StatusCode::INVALID_ARGUMENT,
+               {"counts.x must be in [1, 512] (got 0)"});
   expect_error(set_params({{"hysteresis", "nan"}}), grpc::StatusCode::INVALID_ARGUMENT,
-               {"hysteresis"});
+               {"hysteresis: 'nan' is not finite"});
   expect_error(set_params({{"no_such_parameter", "1"}}), grpc::StatusCode::INVALID_ARGUMENT,
                {"unknown field parameter 'no_such_parameter'"});
   // Nothing changed: a partial update with one bad value applies none.
@@ -295,7 +319,8 @@ TEST_F(BadInputTest, FieldParametersOutOfRange) {
 
   v1::FieldParams reply;
   expect_error(set_params({{"hysteresis", "0.5"}, {"irradiance_gamma", "99"}}),
-               grpc::StatusCode::INVALID_ARGUMENT, {"irradiance_gamma"});
+               grpc::StatusCode::INVALID_ARGUMENT,
+               {"irradiance_gamma must be in [1, 10] (got 99)"});
   v1::GetFieldParamsRequest get;
   get.set_session_id(session_);
   auto ctx = context();

@@ -50,6 +50,15 @@ expect "$work/transform.json" '"tall_box"'
 c params set --session "$session" hysteresis=0.5 >"$work/params.json"
 expect "$work/params.json" '"value": "0.5"'
 c params get --session "$session" >"$work/params_get.json"; expect "$work/params_get.json" '"probes": "8"'
+# The probe-state counts are in the JSON, and the four sum to the probe count.
+expect "$work/params_get.json" '"probe_states"'
+state_sum=0
+for state in vigilant awake sleeping off; do
+  n=$(sed -n "s/^ *\"$state\": \"\([0-9]*\)\".*/\1/p" "$work/params_get.json" | head -n 1)
+  [ -n "$n" ] || { cat "$work/params_get.json" >&2; fail "params get prints no $state count"; }
+  state_sum=$((state_sum + n))
+done
+[ "$state_sum" = 8 ] || fail "probe states sum to $state_sum, not 8"
 c frame --session "$session" --view "$view" --out "$work/frame.png" >"$work/frame.json"
 [ -s "$work/frame.png" ] || fail "no frame.png"
 c frame --session "$session" --width 32 --height 24 --out "$work/frame.jpg" >/dev/null

@@ -2,74 +2,15 @@
 // stream ends with OK (a clean end, not a dropped connection), and the process exits 0 within
 // its shutdown grace period.
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fstream>
 
 #include "grpc/health/v1/health.grpc.pb.h"
+#include "tests/service/server_process.h"
 #include "tests/service/service_fixture.h"
-
-extern char** environ;
 
 namespace ddgi::test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-class ServerProcess {
- public:
-  explicit ServerProcess(const std::vector<std::string>& extra) {
-    port_file_ = testing::TempDir() + "/ddgi_port_" + std::to_string(::getpid());
-    std::remove(port_file_.c_str());
-    std::vector<std::string> args = {
-        DDGI_SERVER_EXECUTABLE, "--listen", "127.0.0.1:0",  "--port-file",        port_file_,
-        "--metrics-port",       "-1",       "--scene-root", DDGI_TEST_SCENE_ROOT, "--validation"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::vector<char*> argv;
-    for (std::string& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    EXPECT_EQ(posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ), 0);
-  }
-  ~ServerProcess() {
-    if (pid_ > 0 && !exited_) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    std::remove(port_file_.c_str());
-  }
-  // The port, once the server wrote it (0 on timeout).
-  int port(double timeout_seconds = 60.0) {
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_seconds);
-    while (Clock::now() < end) {
-      std::ifstream file(port_file_);
-      int port = 0;
-      if (file >> port && port > 0) return port;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return 0;
-  }
-  void signal(int number) { ::kill(pid_, number); }
-  // The exit status, or -1 when the process is still running after `timeout_seconds`.
-  int wait(double timeout_seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_seconds);
-    while (Clock::now() < end) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        exited_ = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  bool exited_ = false;
-  std::string port_file_;
-};
 
 TEST(ShutdownTest, SigtermEndsStreamsCleanlyAndExitsInTime) {
   constexpr double kGrace = 3.0;

@@ -1,0 +1,42 @@
+#include "tests/service/atlas_download.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace ddgi::test {
+
+AtlasDownload download_atlas(v1::RenderService::Stub& stub, const std::string& session_id,
+                             v1::AtlasKind kind, v1::AtlasFormat format, const std::string& token) {
+  v1::DumpAtlasRequest request;
+  request.set_session_id(session_id);
+  request.set_kind(kind);
+  request.set_format(format);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
+  auto reader = stub.DumpAtlas(&context, request);
+  AtlasDownload out;
+  v1::AtlasChunk chunk;
+  bool first = true;
+  while (reader->Read(&chunk)) {
+    out.message_sizes.push_back(chunk.ByteSizeLong());
+    if (first) {
+      out.metadata = chunk.metadata();
+      first = false;
+      continue;
+    }
+    out.offsets.push_back(chunk.offset());
+    out.sizes.push_back(chunk.data().size());
+    out.bytes += chunk.data();
+  }
+  out.status = reader->Finish();
+  return out;
+}
+
+std::vector<float> raw_floats(const std::string& bytes) {
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+  return values;
+}
+
+}  // namespace ddgi::test
