@@ -55,6 +55,12 @@ struct Case {
 
 class ReferenceTest : public GpuTest, public ::testing::WithParamInterface<Case> {};
 
+struct Scores {
+  double psnr = 0.0, ssim = 0.0, flip = 0.0;
+};
+
+// The scene's default field warmed up, its indirect view scored against the reference's; the
+// same without probe management must not be better by more than the stated tolerance.
 TEST_P(ReferenceTest, FieldIndirectMatchesPathTracedReference) {
   const Case c = GetParam();
   const std::string refs = kRepo + "/tests/data/references/" + c.scene;
@@ -65,37 +71,57 @@ TEST_P(ReferenceTest, FieldIndirectMatchesPathTracedReference) {
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   auto gpu = GpuScene::create(context(), *scene);
   ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-  auto field = IrradianceField::create(context(), **gpu, default_field_params(*scene),
-                                       context().default_backend());
-  ASSERT_TRUE(field.ok()) << field.error().message;
-  ASSERT_TRUE((*field)->warm_up(96, DirectMode::kTracedShadows).ok());
-  auto renderer = Renderer::create(context(), **gpu, field->get(), context().default_backend());
-  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-  FrameSettings settings;
-  settings.width = indirect_ref->width;
-  settings.height = indirect_ref->height;
-  settings.camera = default_camera(*scene);
-  settings.view = View::kIndirect;
-  auto frame = (*renderer)->render(settings);
-  ASSERT_TRUE(frame.ok()) << frame.error().message;
-
-  std::vector<float> ddgi;
-  for (size_t i = 0; i < frame->radiance.size(); i += 4) {
-    ddgi.insert(ddgi.end(), &frame->radiance[i], &frame->radiance[i + 3]);
-  }
   const float exposure = auto_exposure(full_ref->rgb);
-  const std::vector<float> a = display(indirect_ref->rgb, exposure), b = display(ddgi, exposure);
-  const metrics::RgbImageView va{settings.width, settings.height, a};
-  const metrics::RgbImageView vb{settings.width, settings.height, b};
-  auto psnr = metrics::psnr(va, vb);
-  auto ssim = metrics::ssim(va, vb);
-  auto flip = metrics::flip(va, vb);
-  ASSERT_TRUE(psnr.ok() && ssim.ok() && flip.ok());
-  std::printf("%s indirect vs reference: PSNR %.2f dB, SSIM %.4f, FLIP %.4f\n", c.scene, *psnr,
-              *ssim, flip->mean);
-  EXPECT_GE(*psnr, c.min_psnr);
-  EXPECT_GE(*ssim, c.min_ssim);
-  EXPECT_LE(flip->mean, c.max_flip);
+  const std::vector<float> reference = display(indirect_ref->rgb, exposure);
+
+  auto score = [&](const IrradianceFieldParams& params) -> Scores {
+    auto field = IrradianceField::create(context(), **gpu, params, context().default_backend());
+    EXPECT_TRUE(field.ok()) << field.error().message;
+    if (!field.ok()) return {};
+    EXPECT_TRUE((*field)->warm_up(96, DirectMode::kTracedShadows).ok());
+    auto renderer = Renderer::create(context(), **gpu, field->get(), context().default_backend());
+    EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+    if (!renderer.ok()) return {};
+    FrameSettings settings;
+    settings.width = indirect_ref->width;
+    settings.height = indirect_ref->height;
+    settings.camera = default_camera(*scene);
+    settings.view = View::kIndirect;
+    auto frame = (*renderer)->render(settings);
+    EXPECT_TRUE(frame.ok()) << frame.error().message;
+    if (!frame.ok()) return {};
+    std::vector<float> ddgi;
+    for (size_t i = 0; i < frame->radiance.size(); i += 4) {
+      ddgi.insert(ddgi.end(), &frame->radiance[i], &frame->radiance[i + 3]);
+    }
+    const std::vector<float> shown = display(ddgi, exposure);
+    const metrics::RgbImageView va{settings.width, settings.height, reference};
+    const metrics::RgbImageView vb{settings.width, settings.height, shown};
+    auto psnr = metrics::psnr(va, vb);
+    auto ssim = metrics::ssim(va, vb);
+    auto flip = metrics::flip(va, vb);
+    EXPECT_TRUE(psnr.ok() && ssim.ok() && flip.ok());
+    if (!psnr.ok() || !ssim.ok() || !flip.ok()) return {};
+    return {*psnr, *ssim, flip->mean};
+  };
+
+  const IrradianceFieldParams managed = default_field_params(*scene);
+  IrradianceFieldParams unmanaged = managed;
+  unmanaged.classification = false;
+  unmanaged.relocation_iterations = 0;
+  const Scores on = score(managed), off = score(unmanaged);
+  std::printf(
+      "%s indirect vs reference: PSNR %.2f dB, SSIM %.4f, FLIP %.4f (management off: "
+      "%.2f dB, %.4f, %.4f)\n",
+      c.scene, on.psnr, on.ssim, on.flip, off.psnr, off.ssim, off.flip);
+  EXPECT_GE(on.psnr, c.min_psnr);
+  EXPECT_GE(on.ssim, c.min_ssim);
+  EXPECT_LE(on.flip, c.max_flip);
+  // Probe management (relocation + classification, on by default) costs no more than the
+  // tolerance of docs/results/field-quality.md against the same field without it. Measured:
+  // cornell_box +0.48 dB / -0.009 FLIP, two_rooms_open -0.59 dB / +0.013.
+  EXPECT_GE(on.psnr, off.psnr - 0.75);
+  EXPECT_LE(on.flip, off.flip + 0.025);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceTest,
