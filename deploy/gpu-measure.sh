@@ -7,6 +7,7 @@
 #   deploy/gpu-measure.sh fields OUT    # render checks (vs lavapipe), per-pass times at 1080p,
 #                                       # the thesis-table field benchmark, field quality vs
 #                                       # the path-traced reference
+#   deploy/gpu-measure.sh bench OUT     # the thesis-table field benchmark alone
 #   deploy/gpu-measure.sh shadows OUT   # direct-light modes vs the reference, the streaming
 #                                       # service benchmark
 #
@@ -43,14 +44,30 @@ case "$part" in
     run_step render1080 bash -c 'for s in scenes/*.gltf scenes/*.ddgi.json; do echo "## $s";
       ddgi-render "$s" --width 1920 --height 1080 --frames 20 --warmup 16 --backend pipeline \
         --out /tmp/frame.png --log-level warning; done'
-    # The thesis's Table 7.3/7.4 setup: no culling, 8x8 maps, no fixed rays.
+    "$0" bench "$out"
+    run_step eval ddgi-eval "${repo_scenes[@]}" "${real_scenes[@]}" --width 384 --height 216 \
+      --spp 2048 --warmup 256 \
+      --configs "management on:;management off:classification=false,relocation_iterations=0"
+    ;;
+  bench)
+    # The thesis's Table 7.3/7.4 setup: no culling, 8x8 maps, no fixed rays. A first, untimed
+    # run brings the GPU's clocks up (the first configurations of a cold GPU ran up to 5x slow).
+    run_step bench-warmup ddgi-bench scenes/staircase.ddgi.json --grids 32x32x32 --rays 512 \
+      --frames 40 --warmup 8
     run_step bench ddgi-bench scenes/staircase.ddgi.json scenes/veach_ajar.ddgi.json \
       --grids "16x16x16;32x16x32;32x32x32" --rays 64,128,256,512 --frames 20 --warmup 8 \
       --field distance_texels=8 --field fixed_rays=0 --field classification=false \
       --field relocation_iterations=0
-    run_step eval ddgi-eval "${repo_scenes[@]}" "${real_scenes[@]}" --width 384 --height 216 \
-      --spp 2048 --warmup 256 \
-      --configs "management on:;management off:classification=false,relocation_iterations=0"
+    # Cost follows active probes: box_on_floor under a cube of probes 8 m high, with and without
+    # culling (docs/results/probe-management-h100.md).
+    for g in "16 0.5 -3.75 0.25" "32 0.25 -3.875 0.125" "64 0.125 -3.9375 0.0625"; do
+      set -- $g
+      for c in "" "--field classification=false --field relocation_iterations=0"; do
+        # shellcheck disable=SC2086
+        run_step "culling-$1${c:+-off}" ddgi-bench scenes/box_on_floor.gltf --grids "${1}x${1}x${1}" \
+          --field spacing=$2,$2,$2 --field origin=$3,$4,$3 $c --rays 128 --frames 20 --warmup 4
+      done
+    done
     ;;
   shadows)
     run_step shadow-eval ddgi-shadow-eval scenes/box_on_floor.gltf scenes/cornell_box.gltf \
@@ -62,7 +79,7 @@ case "$part" in
     tar -C "$out" -czf "$out/service.tgz" service && rm -rf "$out/service"
     ;;
   *)
-    echo "usage: deploy/gpu-measure.sh fields|shadows OUT" >&2
+    echo "usage: deploy/gpu-measure.sh fields|bench|shadows OUT" >&2
     exit 2
     ;;
 esac
