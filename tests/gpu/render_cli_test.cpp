@@ -1,0 +1,112 @@
+// The ddgi-render executable, as a user runs it (the README's command without a server): the
+// default scene to a PNG with GI, its per-pass table, and clear errors for bad input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "encode/png.h"
+
+namespace ddgi::test {
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+class RenderCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("ddgi-render-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  CliRun render(const std::string& arguments) const {
+    const std::string command = std::string("cd '") + DDGI_SOURCE_DIR + "' && '" + DDGI_RENDER_EXE +
+                                "' " + arguments + " >'" + (dir_ / "out.txt").string() + "' 2>'" +
+                                (dir_ / "err.txt").string() + "'";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"),
+            slurp(dir_ / "err.txt")};
+  }
+
+  std::filesystem::path dir_;
+};
+
+// The default scene (the Cornell box) with GI: a PNG of the asked size whose left wall is red,
+// right wall green and middle lit, and the pass table on stdout.
+TEST_F(RenderCliTest, RendersTheDefaultSceneToAPng) {
+  const std::string png = (dir_ / "cornell.png").string();
+  const CliRun run = render("--out '" + png + "' --width 64 --height 48 --warmup 8 --validation");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("field trace"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("indirect"), std::string::npos);
+  EXPECT_NE(run.out.find("total"), std::string::npos);
+  EXPECT_NE(run.out.find("Mrays/s"), std::string::npos);
+  // Validation was on and said nothing.
+  EXPECT_NE(run.err.find("validation on"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("vulkan validation:"), std::string::npos) << run.err;
+
+  const std::string bytes = slurp(png);
+  auto image = encode::decode_png(
+      std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  ASSERT_EQ(image->width, 64u);
+  ASSERT_EQ(image->height, 48u);
+  // Mean RGB of a block of pixels (x0..x0+7, y 20..27).
+  auto block = [&](uint32_t x0) {
+    double sum[3] = {0, 0, 0};
+    for (uint32_t y = 20; y < 28; ++y) {
+      for (uint32_t x = x0; x < x0 + 8; ++x) {
+        for (int c = 0; c < 3; ++c) sum[c] += image->pixels[(size_t(y) * 64 + x) * 4 + c];
+      }
+    }
+    return std::array<double, 3>{sum[0] / 64, sum[1] / 64, sum[2] / 64};
+  };
+  const auto left = block(6), middle = block(28), right = block(52);
+  EXPECT_GT(left[0], 1.5 * left[1]) << "left wall not red";
+  EXPECT_GT(right[1], 1.5 * right[0]) << "right wall not green";
+  EXPECT_GT(middle[0] + middle[1] + middle[2], 3 * 40.0) << "back wall dark";
+}
+
+// Bad input: the exit code is non-zero and the message names what is wrong.
+TEST_F(RenderCliTest, BadInputNamesTheProblem) {
+  const std::string out = "--out '" + (dir_ / "x.png").string() + "'";
+  const CliRun zero = render(out + " --width 0");
+  EXPECT_NE(zero.exit_code, 0);
+  EXPECT_NE(zero.err.find("--width must be in [1, 16384] (got 0)"), std::string::npos) << zero.err;
+  const CliRun missing = render("no_such_scene.gltf " + out);
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("no_such_scene.gltf: no such file"), std::string::npos) << missing.err;
+  const CliRun unknown = render(out + " --bogus 1");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.err.find("unknown flag --bogus"), std::string::npos) << unknown.err;
+  const CliRun field = render(out + " --field hysteresis=2");
+  EXPECT_NE(field.exit_code, 0);
+  EXPECT_NE(field.err.find("hysteresis must be in [0, 0.999]"), std::string::npos) << field.err;
+  const CliRun format = render("--out '" + (dir_ / "x.bmp").string() + "'");
+  EXPECT_NE(format.exit_code, 0);
+  EXPECT_NE(format.err.find("bmp"), std::string::npos) << format.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
+}
+
+}  // namespace
+}  // namespace ddgi::test
