@@ -52,23 +52,14 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels;
 }
 
-// Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are
-// freed; the error names the grid, the bytes it needs and what the budget leaves free.
+// Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are freed.
 Status check_budget(const vk::Context& context, const IrradianceFieldParams& params,
                     uint64_t held_bytes) {
-  const uint64_t needed = field_gpu_bytes(params);
-  const uint64_t limit =
-      context.memory_budget() ? context.memory_budget() : context.caps().device_local_bytes;
-  const uint64_t others =
-      context.allocated_bytes() - std::min(context.allocated_bytes(), held_bytes);
-  if (!limit || others + needed <= limit) return ok_status();
-  return resource_exhausted(
+  return context.check_fits(
+      field_gpu_bytes(params), held_bytes,
       "the irradiance field (" + std::to_string(params.counts.x) + "x" +
-      std::to_string(params.counts.y) + "x" + std::to_string(params.counts.z) + " probes, " +
-      std::to_string(params.rays_per_probe + params.fixed_rays) + " rays each) needs " +
-      std::to_string(needed) + " bytes of GPU memory; " +
-      std::to_string(limit - std::min(limit, others)) + " bytes of the " + std::to_string(limit) +
-      "-byte budget are free");
+          std::to_string(params.counts.y) + "x" + std::to_string(params.counts.z) + " probes, " +
+          std::to_string(params.rays_per_probe + params.fixed_rays) + " rays each)");
 }
 
 }  // namespace

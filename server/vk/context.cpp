@@ -509,6 +509,16 @@ Status Context::reserve_memory(uint64_t bytes, const std::string& what) {
   }
 }
 
+Status Context::check_fits(uint64_t bytes, uint64_t replaced_bytes, const std::string& what) const {
+  const uint64_t limit = memory_budget_ ? memory_budget_ : caps_.device_local_bytes;
+  const uint64_t current = allocated_bytes_.load();
+  const uint64_t others = current - std::min(current, replaced_bytes);
+  if (!limit || others + bytes <= limit) return ok_status();
+  return resource_exhausted(what + " needs " + std::to_string(bytes) + " bytes of GPU memory; " +
+                            std::to_string(limit - std::min(limit, others)) + " bytes of the " +
+                            std::to_string(limit) + "-byte budget are free");
+}
+
 void Context::release_memory(uint64_t bytes) {
   allocated_bytes_.fetch_sub(bytes);
 }

@@ -110,6 +110,10 @@ class Context {
 
   // Device memory accounting against the budget (RESOURCE_EXHAUSTED beyond it).
   Status reserve_memory(uint64_t bytes, const std::string& what);
+  // Whether `bytes` more would fit the budget once `replaced_bytes` of what is allocated now are
+  // freed: checked before an object frees its old resources to make new ones, so a refusal
+  // leaves it as it was. The error names `what`, the bytes and what the budget leaves free.
+  Status check_fits(uint64_t bytes, uint64_t replaced_bytes, const std::string& what) const;
   void release_memory(uint64_t bytes);
   uint64_t allocated_bytes() const { return allocated_bytes_.load(); }
   uint64_t memory_budget() const { return memory_budget_; }
