@@ -13,6 +13,7 @@
 #include "gi/irradiance_field.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 #include "tests/gpu/white_box.h"
@@ -88,23 +89,6 @@ double mean_rgb(const std::vector<float>& rgba) {
 
 class FieldExtremesTest : public GpuTest {
  protected:
-  struct Setup {
-    std::unique_ptr<GpuScene> scene;
-    std::unique_ptr<IrradianceField> field;
-  };
-  Setup make(const Scene& scene, const IrradianceFieldParams& params,
-             vk::TraceBackend backend = kQuery) {
-    Setup s;
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    if (!gpu.ok()) return s;
-    s.scene = std::move(gpu).value();
-    auto field = IrradianceField::create(context(), *s.scene, params, backend);
-    EXPECT_TRUE(field.ok()) << field.error().message;
-    if (field.ok()) s.field = std::move(field).value();
-    return s;
-  }
-
   // The field's answers; every atlas texel must be finite too, not just the answers.
   std::vector<glm::vec3> answers(IrradianceField& field,
                                  const std::vector<IrradianceQuery>& queries) {
@@ -132,7 +116,7 @@ class FieldExtremesTest : public GpuTest {
                const std::vector<IrradianceQuery>& queries, uint32_t updates = 24,
                bool frame = false, vk::TraceBackend backend = kQuery) {
     Run run;
-    Setup s = make(scene, params, backend);
+    FieldSetup s = make_field_setup(scene, params, backend);
     if (!s.field) return run;
     EXPECT_TRUE(s.field->update(updates, DirectMode::kTracedShadows).ok());
     run.answers = answers(*s.field, queries);
@@ -290,7 +274,7 @@ TEST_P(FurnaceExtremesTest, HysteresisZeroIsOneUpdatesEstimate) {
   const std::vector<IrradianceQuery> queries = furnace_queries();
   IrradianceFieldParams params = furnace_grid();
   params.hysteresis = 0.5f;
-  Setup s = make(load_white_box(rho, le), params, GetParam());
+  FieldSetup s = make_field_setup(load_white_box(rho, le), params, GetParam());
   ASSERT_TRUE(s.field);
   ASSERT_TRUE(s.field->update(3, DirectMode::kTracedShadows).ok());
   const float history = uniform_value(answers(*s.field, queries));
@@ -351,7 +335,7 @@ TEST_P(FurnaceExtremesTest, MaximumHysteresisMovesByTheExpectedFraction) {
   const uint32_t n = 20;
   const std::vector<IrradianceQuery> queries = furnace_queries();
   IrradianceFieldParams params = furnace_grid();
-  Setup s = make(load_white_box(rho, le), params, GetParam());
+  FieldSetup s = make_field_setup(load_white_box(rho, le), params, GetParam());
   ASSERT_TRUE(s.field);
   for (uint32_t history_updates : {3u, 12u}) {
     for (float h : {0.999f, 0.97f}) {

@@ -11,31 +11,14 @@
 
 #include "gi/irradiance_field.h"
 #include "render/gpu_scene.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 
 namespace ddgi::test {
 namespace {
 
-class FieldInternalsTest : public GpuTest {
- protected:
-  struct Setup {
-    std::unique_ptr<GpuScene> scene;
-    std::unique_ptr<IrradianceField> field;
-  };
-  Setup make(const Scene& scene, const IrradianceFieldParams& params,
-             vk::TraceBackend backend = vk::TraceBackend::kRayQuery) {
-    Setup s;
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    if (!gpu.ok()) return s;
-    s.scene = std::move(gpu).value();
-    auto field = IrradianceField::create(context(), *s.scene, params, backend);
-    EXPECT_TRUE(field.ok()) << field.error().message;
-    if (field.ok()) s.field = std::move(field).value();
-    return s;
-  }
-};
+class FieldInternalsTest : public GpuTest {};
 
 // Texel (x, y) of channel c of an atlas read back from the GPU.
 float texel(const IrradianceField::AtlasImage& atlas, uint32_t x, uint32_t y, uint32_t c) {
@@ -74,7 +57,8 @@ Scene solid_cube() {
 // hit distance. The front-face scene, traced with the same rays (same seed, same update), gives
 // the unscaled distances to compare with, texel by texel.
 TEST_F(FieldInternalsTest, BackFaceHitsCarryNoLightAndScaledDistance) {
-  Setup front = make(make_white_furnace_box(0.0f, 1.0f), one_probe_in_the_cube(0.2f));
+  FieldSetup front =
+      make_field_setup(make_white_furnace_box(0.0f, 1.0f), one_probe_in_the_cube(0.2f));
   ASSERT_TRUE(front.field);
   ASSERT_TRUE(front.field->update(1, DirectMode::kTracedShadows).ok());
   auto front_irradiance = front.field->read_irradiance_atlas();
@@ -91,7 +75,7 @@ TEST_F(FieldInternalsTest, BackFaceHitsCarryNoLightAndScaledDistance) {
   }
 
   for (float scale : {0.2f, 0.5f}) {
-    Setup back = make(solid_cube(), one_probe_in_the_cube(scale));
+    FieldSetup back = make_field_setup(solid_cube(), one_probe_in_the_cube(scale));
     ASSERT_TRUE(back.field);
     ASSERT_TRUE(back.field->update(1, DirectMode::kTracedShadows).ok());
     auto irradiance = back.field->read_irradiance_atlas();
@@ -186,7 +170,7 @@ TEST_F(FieldInternalsTest, BordersMirrorTheInteriorTexels) {
   params.fixed_rays = 8;
   params.irradiance_texels = 6;
   params.distance_texels = 10;
-  Setup s = make(make_cornell_box(), params);
+  FieldSetup s = make_field_setup(make_cornell_box(), params);
   ASSERT_TRUE(s.field);
   ASSERT_TRUE(s.field->update(3, DirectMode::kTracedShadows).ok());
   auto irradiance = s.field->read_irradiance_atlas();
@@ -224,7 +208,7 @@ TEST_F(FieldInternalsTest, OverflowingRadianceNeverEntersTheAtlases) {
   params.fixed_rays = 8;
   params.hysteresis = 0.5f;
   for (vk::TraceBackend backend : {vk::TraceBackend::kRayQuery, vk::TraceBackend::kPipeline}) {
-    Setup s = make(scene, params, backend);
+    FieldSetup s = make_field_setup(scene, params, backend);
     ASSERT_TRUE(s.field);
     ASSERT_TRUE(s.field->update(4, DirectMode::kTracedShadows).ok());
     int bad = 0, huge = 0;

@@ -403,15 +403,10 @@ TEST_F(E2eTest, AtlasDumpExrAndRaw) {
 TEST_F(E2eTest, ShadowFieldSession) {
   v1::CreateSessionRequest request = small_session_request("cornell_box", 2);
   request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
-  for (auto [name, value] : {std::pair{"counts", "3,3,3"}, {"rays_per_probe", "16"}}) {
-    auto* p = request.add_shadow_field_params();
-    p->set_name(name);
-    p->set_value(value);
-  }
-  v1::SessionInfo info;
-  auto ctx = context();
-  const grpc::Status created = stub_->CreateSession(ctx.get(), request, &info);
-  ASSERT_TRUE(created.ok()) << created.error_message();
+  add_params(request.mutable_shadow_field_params(),
+             {{"counts", "3,3,3"}, {"rays_per_probe", "16"}});
+  const v1::SessionInfo info = create_session(request);
+  ASSERT_FALSE(info.session_id().empty());
   v1::Frame frame;
   ASSERT_TRUE(render(info.session_id(), 32, 24, &frame).ok());
   bool shadow_pass = false;
@@ -422,11 +417,9 @@ TEST_F(E2eTest, ShadowFieldSession) {
   v1::SetFieldParamsRequest set;
   set.set_session_id(info.session_id());
   set.set_field(v1::FIELD_KIND_SHADOW);
-  auto* p = set.add_params();
-  p->set_name("hysteresis");
-  p->set_value("0.5");
+  add_params(set.mutable_params(), {{"hysteresis", "0.5"}});
   v1::FieldParams params;
-  ctx = context();
+  auto ctx = context();
   ASSERT_TRUE(stub_->SetFieldParams(ctx.get(), set, &params).ok());
   EXPECT_EQ(params.field(), v1::FIELD_KIND_SHADOW);
   EXPECT_EQ(params.probes(), 27u);

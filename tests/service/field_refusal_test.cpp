@@ -145,15 +145,10 @@ TEST_F(FieldRefusalTest, IrradianceFieldKeptByteForByte) {
 TEST_F(FieldRefusalTest, ShadowFieldKeptByteForByte) {
   v1::CreateSessionRequest request = small_session_request("cornell_box", 2);
   request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
-  for (auto [name, value] : {std::pair{"counts", "3,3,3"}, {"rays_per_probe", "16"}}) {
-    auto* p = request.add_shadow_field_params();
-    p->set_name(name);
-    p->set_value(value);
-  }
-  v1::SessionInfo info;
-  auto ctx = context();
-  const grpc::Status created = stub_->CreateSession(ctx.get(), request, &info);
-  ASSERT_TRUE(created.ok()) << created.error_message();
+  add_params(request.mutable_shadow_field_params(),
+             {{"counts", "3,3,3"}, {"rays_per_probe", "16"}});
+  const v1::SessionInfo info = create_session(request);
+  ASSERT_FALSE(info.session_id().empty());
   const std::string session = info.session_id();
   const std::string view = make_view(session);
   const v1::FieldParams before = get_params(session, v1::FIELD_KIND_SHADOW);

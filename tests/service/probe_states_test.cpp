@@ -20,20 +20,14 @@ TEST_F(ProbeStatesTest, CountsOverRpcMatchTheField) {
   v1::CreateSessionRequest request = small_session_request("box_on_floor", 1);
   ASSERT_EQ(request.field_params(0).name(), "counts");
   request.mutable_field_params(0)->set_value("4,1,1");
-  for (auto [name, value] : {std::pair{"origin", "0,0.5,0"}, {"spacing", "0.6,0.6,0.6"}}) {
-    auto* p = request.add_field_params();
-    p->set_name(name);
-    p->set_value(value);
-  }
-  v1::SessionInfo info;
-  auto ctx = context();
-  const grpc::Status created = stub_->CreateSession(ctx.get(), request, &info);
-  ASSERT_TRUE(created.ok()) << created.error_message();
+  add_params(request.mutable_field_params(), {{"origin", "0,0.5,0"}, {"spacing", "0.6,0.6,0.6"}});
+  const v1::SessionInfo info = create_session(request);
+  ASSERT_FALSE(info.session_id().empty());
 
   v1::GetFieldParamsRequest get;
   get.set_session_id(info.session_id());
   v1::FieldParams params;
-  ctx = context();
+  auto ctx = context();
   ASSERT_TRUE(stub_->GetFieldParams(ctx.get(), get, &params).ok());
   ASSERT_TRUE(params.has_probe_states());
   const v1::ProbeStateCounts& counts = params.probe_states();

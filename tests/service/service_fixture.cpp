@@ -82,22 +82,30 @@ v1::CreateSessionRequest ServiceTest::small_session_request(const std::string& s
   v1::CreateSessionRequest request;
   request.mutable_scene()->set_name(scene);
   request.set_warmup_updates(warmup);
-  for (auto [name, value] :
-       {std::pair{"counts", "2,2,2"}, {"rays_per_probe", "16"}, {"fixed_rays", "8"}}) {
-    auto* p = request.add_field_params();
-    p->set_name(name);
-    p->set_value(value);
-  }
+  add_params(request.mutable_field_params(),
+             {{"counts", "2,2,2"}, {"rays_per_probe", "16"}, {"fixed_rays", "8"}});
   return request;
 }
 
-std::string ServiceTest::create_session(const std::string& scene, uint32_t warmup) {
+void ServiceTest::add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>* list,
+                             std::initializer_list<std::pair<const char*, const char*>> params) {
+  for (const auto& [name, value] : params) {
+    v1::FieldParam* p = list->Add();
+    p->set_name(name);
+    p->set_value(value);
+  }
+}
+
+v1::SessionInfo ServiceTest::create_session(const v1::CreateSessionRequest& request) {
   v1::SessionInfo info;
   auto ctx = context();
-  const grpc::Status status =
-      stub_->CreateSession(ctx.get(), small_session_request(scene, warmup), &info);
+  const grpc::Status status = stub_->CreateSession(ctx.get(), request, &info);
   EXPECT_TRUE(status.ok()) << status.error_message();
-  return info.session_id();
+  return status.ok() ? info : v1::SessionInfo{};
+}
+
+std::string ServiceTest::create_session(const std::string& scene, uint32_t warmup) {
+  return create_session(small_session_request(scene, warmup)).session_id();
 }
 
 grpc::Status ServiceTest::render(const std::string& session_id, uint32_t width, uint32_t height,

@@ -39,7 +39,12 @@ class ServiceTest : public ::testing::Test {
   std::unique_ptr<grpc::ClientContext> context(double deadline_seconds = 60.0) const;
   // A session on cornell_box with the small test field; fails the test when it cannot.
   std::string create_session(const std::string& scene = "cornell_box", uint32_t warmup = 2);
+  // CreateSession with `request`; fails the test (and returns an empty info) when it cannot.
+  v1::SessionInfo create_session(const v1::CreateSessionRequest& request);
   v1::CreateSessionRequest small_session_request(const std::string& scene, uint32_t warmup) const;
+  // Appends name=value parameters to a request's list (field_params, shadow_field_params...).
+  static void add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>* list,
+                         std::initializer_list<std::pair<const char*, const char*>> params);
   // RenderFrame of a one-off view.
   grpc::Status render(const std::string& session_id, uint32_t width, uint32_t height,
                       v1::Frame* frame, const v1::Camera* camera = nullptr);
