@@ -401,11 +401,7 @@ TEST_F(E2eTest, AtlasDumpExrAndRaw) {
 // A session in the shadow-field direct mode: frames include the shadow field's update, its
 // parameters are read and changed through the same RPCs with field=SHADOW, its atlases dump.
 TEST_F(E2eTest, ShadowFieldSession) {
-  v1::CreateSessionRequest request = small_session_request("cornell_box", 2);
-  request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
-  add_params(request.mutable_shadow_field_params(),
-             {{"counts", "3,3,3"}, {"rays_per_probe", "16"}});
-  const v1::SessionInfo info = create_session(request);
+  const v1::SessionInfo info = create_session(small_shadow_field_session_request("cornell_box", 2));
   ASSERT_FALSE(info.session_id().empty());
   v1::Frame frame;
   ASSERT_TRUE(render(info.session_id(), 32, 24, &frame).ok());

@@ -143,11 +143,7 @@ TEST_F(FieldRefusalTest, IrradianceFieldKeptByteForByte) {
 }
 
 TEST_F(FieldRefusalTest, ShadowFieldKeptByteForByte) {
-  v1::CreateSessionRequest request = small_session_request("cornell_box", 2);
-  request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
-  add_params(request.mutable_shadow_field_params(),
-             {{"counts", "3,3,3"}, {"rays_per_probe", "16"}});
-  const v1::SessionInfo info = create_session(request);
+  const v1::SessionInfo info = create_session(small_shadow_field_session_request("cornell_box", 2));
   ASSERT_FALSE(info.session_id().empty());
   const std::string session = info.session_id();
   const std::string view = make_view(session);

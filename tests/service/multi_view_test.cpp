@@ -5,56 +5,13 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
 #include "tests/service/service_fixture.h"
 
 namespace ddgi::test {
 namespace {
-
-// Keeps every frame of one stream (the fixture's StreamWatcher keeps only the newest).
-class FrameRecorder {
- public:
-  FrameRecorder(v1::RenderService::Stub& stub, const v1::StreamFramesRequest& request) {
-    reader_ = stub.StreamFrames(&context_, request);
-    thread_ = std::thread([this] {
-      v1::Frame frame;
-      while (reader_->Read(&frame)) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        frames_.push_back(frame);
-      }
-    });
-  }
-  ~FrameRecorder() { (void)stop(); }
-  size_t count() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return frames_.size();
-  }
-  std::vector<v1::Frame> frames() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return frames_;
-  }
-  grpc::Status stop() {
-    if (stopped_) return status_;
-    stopped_ = true;
-    context_.TryCancel();
-    thread_.join();
-    status_ = reader_->Finish();
-    return status_;
-  }
-
- private:
-  grpc::ClientContext context_;
-  std::unique_ptr<grpc::ClientReader<v1::Frame>> reader_;
-  mutable std::mutex mutex_;
-  std::vector<v1::Frame> frames_;
-  std::thread thread_;
-  grpc::Status status_;
-  bool stopped_ = false;
-};
 
 bool wait_until(const std::function<bool()>& done, double seconds) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -111,21 +68,20 @@ TEST_F(MultiViewTest, TwoViewsOwnCamerasOneFieldUpdatePerFrame) {
   const uint64_t updates_before = server().metrics().field_updates.load();
   const uint64_t rendered_before = server().metrics().frames_rendered.load();
   const uint64_t loop_frames_before = session_frames(session);
-  std::map<std::string, std::unique_ptr<FrameRecorder>> recorders;
+  std::map<std::string, std::unique_ptr<StreamWatcher>> streams;
   for (const v1::ViewInfo* view : {&view_a, &view_b}) {
     v1::StreamFramesRequest request;
     request.set_session_id(session);
     request.set_view_id(view->view_id());
-    recorders[view->view_id()] = std::make_unique<FrameRecorder>(*stub_, request);
+    streams[view->view_id()] = std::make_unique<StreamWatcher>(*stub_, request, token_, true);
   }
   ASSERT_TRUE(wait_until(
       [&] {
-        return recorders[view_a.view_id()]->count() >= 8 &&
-               recorders[view_b.view_id()]->count() >= 8;
+        return streams[view_a.view_id()]->frames() >= 8 && streams[view_b.view_id()]->frames() >= 8;
       },
       60.0))
       << "the two streams did not both deliver 8 frames";
-  for (auto& [id, recorder] : recorders) recorder->stop();
+  for (auto& [id, stream] : streams) stream->stop();
   // The loop is idle once nobody waits for frames; wait for its last iteration to be counted.
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const uint64_t loop_frames = session_frames(session) - loop_frames_before;
@@ -146,7 +102,7 @@ TEST_F(MultiViewTest, TwoViewsOwnCamerasOneFieldUpdatePerFrame) {
   std::optional<int64_t> offset;
   for (const v1::ViewInfo* view : {&view_a, &view_b}) {
     const v1::Camera& camera = view == &view_a ? camera_a : camera_b;
-    for (const v1::Frame& frame : recorders[view->view_id()]->frames()) {
+    for (const v1::Frame& frame : streams[view->view_id()]->all()) {
       SCOPED_TRACE("view " + view->view_id() + " frame " + std::to_string(frame.frame_index()));
       EXPECT_EQ(frame.view_id(), view->view_id());
       EXPECT_EQ(frame.session_id(), session);

@@ -87,6 +87,15 @@ v1::CreateSessionRequest ServiceTest::small_session_request(const std::string& s
   return request;
 }
 
+v1::CreateSessionRequest ServiceTest::small_shadow_field_session_request(const std::string& scene,
+                                                                         uint32_t warmup) const {
+  v1::CreateSessionRequest request = small_session_request(scene, warmup);
+  request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
+  add_params(request.mutable_shadow_field_params(),
+             {{"counts", "3,3,3"}, {"rays_per_probe", "16"}});
+  return request;
+}
+
 void ServiceTest::add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>* list,
                              std::initializer_list<std::pair<const char*, const char*>> params) {
   for (const auto& [name, value] : params) {
@@ -120,20 +129,26 @@ grpc::Status ServiceTest::render(const std::string& session_id, uint32_t width, 
 }
 
 StreamWatcher::StreamWatcher(v1::RenderService::Stub& stub, v1::StreamFramesRequest request,
-                             const std::string& token) {
+                             const std::string& token, bool keep_all) {
   if (!token.empty()) context_.AddMetadata("authorization", "Bearer " + token);
   reader_ = stub.StreamFrames(&context_, request);
-  thread_ = std::thread([this] {
+  thread_ = std::thread([this, keep_all] {
     v1::Frame frame;
     while (reader_->Read(&frame)) {
       {
         std::lock_guard<std::mutex> lock(mutex_);
         last_ = frame;
+        if (keep_all) all_.push_back(frame);
       }
       frames_.fetch_add(1);
     }
     ended_ = true;
   });
+}
+
+std::vector<v1::Frame> StreamWatcher::all() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return all_;
 }
 
 StreamWatcher::~StreamWatcher() {

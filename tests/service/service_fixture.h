@@ -42,6 +42,9 @@ class ServiceTest : public ::testing::Test {
   // CreateSession with `request`; fails the test (and returns an empty info) when it cannot.
   v1::SessionInfo create_session(const v1::CreateSessionRequest& request);
   v1::CreateSessionRequest small_session_request(const std::string& scene, uint32_t warmup) const;
+  // The same in the shadow-field direct mode, with a small shadow field (3x3x3, 16 rays).
+  v1::CreateSessionRequest small_shadow_field_session_request(const std::string& scene,
+                                                              uint32_t warmup) const;
   // Appends name=value parameters to a request's list (field_params, shadow_field_params...).
   static void add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>* list,
                          std::initializer_list<std::pair<const char*, const char*>> params);
@@ -65,11 +68,13 @@ class ServiceTest : public ::testing::Test {
 // while they do other things.
 class StreamWatcher {
  public:
+  // `keep_all`: keep every frame (all()), not only the newest.
   StreamWatcher(v1::RenderService::Stub& stub, v1::StreamFramesRequest request,
-                const std::string& token = "");
+                const std::string& token = "", bool keep_all = false);
   ~StreamWatcher();  // cancels and joins
   uint64_t frames() const { return frames_.load(); }
   v1::Frame last() const;
+  std::vector<v1::Frame> all() const;
   // Frames per second over the next `seconds`.
   double measure_fps(double seconds) const;
   // Waits until at least `count` frames arrived (false on timeout).
@@ -86,6 +91,7 @@ class StreamWatcher {
   std::atomic<bool> ended_{false};
   mutable std::mutex mutex_;
   v1::Frame last_;
+  std::vector<v1::Frame> all_;  // with keep_all
   std::thread thread_;
   grpc::Status status_;
   bool stopped_ = false;
