@@ -6,6 +6,7 @@
 
 #include "gi/irradiance_field.h"
 #include "render/gpu_scene.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 #include "tests/gpu/white_box.h"
@@ -13,23 +14,7 @@
 namespace ddgi::test {
 namespace {
 
-class FieldTest : public GpuTest {
- protected:
-  struct Setup {
-    std::unique_ptr<GpuScene> scene;
-    std::unique_ptr<IrradianceField> field;
-  };
-  Setup make(const Scene& scene, const IrradianceFieldParams& params, vk::TraceBackend backend) {
-    Setup s;
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    s.scene = std::move(gpu).value();
-    auto field = IrradianceField::create(context(), *s.scene, params, backend);
-    EXPECT_TRUE(field.ok()) << field.error().message;
-    s.field = std::move(field).value();
-    return s;
-  }
-};
+class FieldTest : public GpuTest {};
 
 // Points well inside the furnace box, normals along the six axes.
 std::vector<IrradianceQuery> furnace_queries() {
@@ -57,7 +42,8 @@ TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
   params.counts = {2, 2, 2};
   params.rays_per_probe = 64;
   params.hysteresis = 0.5f;  // converge in few updates; the bounce series needs ~log(0.01)/log(rho)
-  Setup s = make(load_white_box(rho, le), params, backend);
+  FieldSetup s = make_field_setup(load_white_box(rho, le), params, backend);
+  ASSERT_TRUE(s.field);
   // Each update adds one bounce: after n updates the error is about rho^n.
   const uint32_t updates = static_cast<uint32_t>(std::ceil(std::log(0.002) / std::log(rho))) + 12;
   ASSERT_TRUE(s.field->update(updates, DirectMode::kTracedShadows).ok());
@@ -86,8 +72,10 @@ TEST_F(FieldTest, BackendsGiveTheSameAtlases) {
   params.fixed_rays = 8;
   std::vector<float> atlases[2];
   for (int b = 0; b < 2; ++b) {
-    Setup s = make(make_cornell_box(), params,
-                   b == 0 ? vk::TraceBackend::kRayQuery : vk::TraceBackend::kPipeline);
+    FieldSetup s =
+        make_field_setup(make_cornell_box(), params,
+                         b == 0 ? vk::TraceBackend::kRayQuery : vk::TraceBackend::kPipeline);
+    ASSERT_TRUE(s.field);
     ASSERT_TRUE(s.field->update(6, DirectMode::kTracedShadows).ok());
     auto irradiance = s.field->read_irradiance_atlas();
     auto distance = s.field->read_distance_atlas();

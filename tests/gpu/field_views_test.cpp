@@ -12,6 +12,7 @@
 #include "gi/irradiance_field.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 
@@ -20,21 +21,12 @@ namespace {
 
 class FieldViewsTest : public GpuTest {
  protected:
-  struct Setup {
-    std::unique_ptr<GpuScene> scene;
-    std::unique_ptr<IrradianceField> field;
+  struct Setup : FieldSetup {
     std::unique_ptr<Renderer> renderer;
   };
   Setup make(const Scene& scene, const IrradianceFieldParams& params) {
-    Setup s;
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    if (!gpu.ok()) return s;
-    s.scene = std::move(gpu).value();
-    auto field = IrradianceField::create(context(), *s.scene, params, vk::TraceBackend::kRayQuery);
-    EXPECT_TRUE(field.ok()) << field.error().message;
-    if (!field.ok()) return s;
-    s.field = std::move(field).value();
+    Setup s{make_field_setup(scene, params), nullptr};
+    if (!s.field) return s;
     auto renderer =
         Renderer::create(context(), *s.scene, s.field.get(), vk::TraceBackend::kRayQuery);
     EXPECT_TRUE(renderer.ok()) << renderer.error().message;
