@@ -34,6 +34,11 @@ float visibility_range(glm::vec3 spacing) {
   return static_cast<float>(std::min(1.5 * diagonal, 1e17));
 }
 
+DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams* field) {
+  if (uses_shadow_field(frame_mode) || !field) return frame_mode;
+  return field->probe_direct.value_or(frame_mode);
+}
+
 uint64_t probe_count(const IrradianceFieldParams& p) {
   return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
          uint64_t(std::max(p.counts.z, 0));

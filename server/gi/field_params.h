@@ -138,6 +138,12 @@ IrradianceFieldParams default_field_params(const Scene& scene);
 
 uint64_t probe_count(const IrradianceFieldParams& params);
 
+// The mode a shadow field is updated in when it serves a frame in `frame_mode` and the probe
+// rays of an irradiance field with `field` (null: no field, or not updated): the frame's when
+// the frame reads the shadow field, else the probe rays' (probe_direct). Nothing reads the
+// shadow field unless uses_shadow_field() of the result.
+DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams* field);
+
 // Hit distances in a field's moments atlas (irradiance and shadow fields) are clamped to this:
 // 1.5 x the cell diagonal, the reach of a probe's visibility, and at most 1e17 so that weighted
 // sums of squared distances over 1024 rays stay inside fp32 (1024 x 1e34 < 3.4e38) however

@@ -230,12 +230,9 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
 
   // The shadow field is updated when the frame reads it, or when the irradiance field's probe
   // rays do (their own mode, field parameter probe_direct).
-  const DirectMode probe_mode =
-      field_ ? field_->probe_mode(settings.direct_mode) : settings.direct_mode;
-  const bool probes_read_shadow_field =
-      field_ && settings.field_updates > 0 && uses_shadow_field(probe_mode);
-  const bool update_shadow_field = shadow_field_ && (shadow_mode || probes_read_shadow_field);
-  const DirectMode shadow_update_mode = shadow_mode ? settings.direct_mode : probe_mode;
+  const DirectMode shadow_update_mode = shadow_field_mode(
+      settings.direct_mode, field_ && settings.field_updates > 0 ? &field_->params() : nullptr);
+  const bool update_shadow_field = shadow_field_ && uses_shadow_field(shadow_update_mode);
   if (field_ && settings.field_updates > 0) DDGI_TRY(field_->prepare());
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_.begin_frame(cmd);

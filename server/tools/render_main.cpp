@@ -176,9 +176,8 @@ Status run(int argc, char** argv) {
   }
   // The shadow field first: the irradiance field's probe rays read it in its modes. It exists
   // when the frame reads it or the probe rays do (--field probe_direct=...).
-  const DirectMode probe_mode = field_params.probe_direct.value_or(settings.direct_mode);
   const DirectMode shadow_mode =
-      uses_shadow_field(settings.direct_mode) || gi != "on" ? settings.direct_mode : probe_mode;
+      shadow_field_mode(settings.direct_mode, gi == "on" ? &field_params : nullptr);
   std::unique_ptr<ShadowField> shadow_field;
   if (uses_shadow_field(shadow_mode)) {
     DDGI_ASSIGN_OR_RETURN(shadow_field, ShadowField::create(*context, *gpu_scene, shadow_params,
