@@ -8,6 +8,7 @@ shift
 mkdir -p "$out"
 render=${DDGI_RENDER:-ddgi-render}
 scenes=(scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/two_rooms_closed.gltf
+        scenes/two_rooms_plane_wall.gltf
         scenes/box_on_floor.gltf scenes/white_box.gltf
         scenes/cornell_kajiya.ddgi.json scenes/cornell_nvpro.ddgi.json
         scenes/lights_punctual.ddgi.json scenes/veach_ajar.ddgi.json scenes/staircase.ddgi.json

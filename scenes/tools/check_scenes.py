@@ -412,8 +412,9 @@ def check_cornell(fail, doc, tris, world):
                 n + ": camera does not look into the box")
 
 
-def check_two_rooms(fail, doc, tris, world, open_door):
-    n = "two_rooms_" + ("open" if open_door else "closed")
+def check_two_room_shell(fail, doc, tris, n):
+    """The shell both two-room scenes share: a closed box facing into the rooms. Returns its
+    bounds."""
     ex = doc["asset"]["extras"]
     smin, smax = ex["shell"]["min"], ex["shell"]["max"]
     shell = node_tris(tris, "rooms_shell")
@@ -425,6 +426,12 @@ def check_two_rooms(fail, doc, tris, world, open_door):
     fail.expect(close(lo, smin) and close(hi, smax), n + ": shell bounds")
     fail.expect(3.5 <= -smin[0] <= 4.5 and 3.5 <= smax[0] <= 4.5 and abs(smax[1] - 3) < 1e-9
                 and abs(smax[2] - smin[2] - 4) < 1e-9, n + ": rooms are not about 4 x 3 x 4 m")
+    return smin, smax
+
+
+def check_two_rooms(fail, doc, tris, world, open_door):
+    n = "two_rooms_" + ("open" if open_door else "closed")
+    smin, smax = check_two_room_shell(fail, doc, tris, n)
     wall = node_tris(tris, "shared_wall")
     t = 0.02
     check_solid(fail, wall, n + ": shared_wall", True,
@@ -494,6 +501,45 @@ def check_two_rooms(fail, doc, tris, world, open_door):
     else:
         fail.expect(reach_lit == 0, n + ": %d rays pass from the dark room into the lit room" % reach_lit)
 
+
+def check_two_rooms_plane_wall(fail, doc, tris, world):
+    n = "two_rooms_plane_wall"
+    smin, smax = check_two_room_shell(fail, doc, tris, n)
+    wall = node_tris(tris, "plane_wall")
+    fail.expect(len(wall) == 2 and all(close(t.n, (-1, 0, 0)) for t in wall),
+                n + ": plane_wall must be one quad facing the lit room")
+    if wall:
+        wlo, whi = bbox(wall)
+        fail.expect(close(wlo, (0, smin[1], smin[2])) and close(whi, (0, smax[1], smax[2])),
+                    n + ": the plane wall must fill the section x = 0: %s %s" % (wlo, whi))
+    wall_mats = {t.material for t in wall}
+    fail.expect(all(m.get("doubleSided") is True for m in doc["materials"] if m["name"] in wall_mats),
+                n + ": the plane wall's material must be double-sided")
+    fail.expect(all(m.get("doubleSided") is not True for m in doc["materials"]
+                    if m["name"] not in wall_mats), n + ": only the plane wall is double-sided")
+    light, lp = light_of(doc, world, "lit_room_light")
+    fail.expect(light is not None and light["type"] == "point" and lp is not None and
+                smin[0] < lp[0] < 0.0, n + ": no point light in the lit room")
+    eye, fwd = camera_ray(doc, world)
+    fail.expect(0.0 < eye[0] < smax[0] and fwd[0] < 0.0,
+                n + ": camera not in the dark room looking at the wall")
+    # The wall is the only thing between the rooms: no ray from the light reaches x > 0 and
+    # no ray from the dark room reaches x < 0.
+    rng = random.Random(1)
+    crossed, escaped = 0, 0
+    for _ in range(3000):
+        for origin, side in ((lp, -1.0), ((rng.uniform(0.05, smax[0] - 0.05), rng.uniform(0.05, smax[1] - 0.05),
+                                            rng.uniform(smin[2] + 0.05, smax[2] - 0.05)), 1.0)):
+            if origin is None:
+                continue
+            d = random_dir(rng)
+            h = intersect(tris, origin, d)
+            if h is None:
+                escaped += 1
+            elif add(origin, scale(d, h[0]))[0] * side < -1e-6:
+                crossed += 1
+    fail.expect(escaped == 0, n + ": %d rays escaped the shell" % escaped)
+    fail.expect(crossed == 0, n + ": %d rays pass between the rooms" % crossed)
 
 def check_white_box(fail, doc, tris, world):
     n = "white_box"
@@ -637,6 +683,7 @@ SCENE_CHECKS = {
     "cornell_box.gltf": check_cornell,
     "two_rooms_closed.gltf": lambda f, d, t, w: check_two_rooms(f, d, t, w, False),
     "two_rooms_open.gltf": lambda f, d, t, w: check_two_rooms(f, d, t, w, True),
+    "two_rooms_plane_wall.gltf": check_two_rooms_plane_wall,
     "white_box.gltf": check_white_box,
     "box_on_floor.gltf": check_box_on_floor,
 }

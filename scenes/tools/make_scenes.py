@@ -400,6 +400,33 @@ def two_rooms(open_door):
         "lit_room_x": [SHELL_X0, -t2], "dark_room_x": [t2, SHELL_X1]})
 
 
+def two_rooms_plane_wall():
+    """The closed two rooms with the 2 cm slab replaced by the thinnest wall there is: one
+    double-sided quad in the plane x = 0, as game art models partitions. A probe in that plane
+    sees both rooms, the classic light leak that relocation must fix."""
+    g = Gltf("two_rooms_plane_wall")
+    g.material("lit_room_white", (0.75, 0.75, 0.75))
+    g.material("dark_room_white", (0.75, 0.75, 0.75))
+    g.material("plane_wall_white", (0.75, 0.75, 0.75), double_sided=True)
+    zd = ROOM_D / 2.0
+    shell = cell_faces([[SHELL_X0, 0.0, SHELL_X1], [0.0, ROOM_H], [-zd, zd]],
+                       lambda i, j, k: True, inward=True,
+                       material_of=lambda i, j, k: "lit_room_white" if i == 0 else "dark_room_white")
+    g.mesh_node("rooms_shell", [(shell["lit_room_white"], "lit_room_white"),
+                                (shell["dark_room_white"], "dark_room_white")])
+    wall = MeshData()
+    wall.rect(0, 0.0, (0.0, 0.0, -zd), (0.0, ROOM_H, zd), -1)  # front face towards the light
+    g.mesh_node("plane_wall", [(wall, "plane_wall_white")])
+    g.point_light("lit_room_light", (-2.05, 2.5, 0.0), 10.0)
+    g.camera("camera", (3.4, 1.6, 1.6), (0.0, 1.0, -0.1), 60.0)
+    g.write("two_rooms_plane_wall.gltf", {
+        "purpose": "Light-leak test: a lit room and a dark room split by a zero-thickness, "
+                   "double-sided wall (one quad at x = 0, no doorway).",
+        "shell": {"min": [SHELL_X0, 0.0, -zd], "max": [SHELL_X1, ROOM_H, zd]},
+        "plane_wall": {"x": 0.0, "double_sided": True},
+        "lit_room_x": [SHELL_X0, 0.0], "dark_room_x": [0.0, SHELL_X1]})
+
+
 def white_box():
     """White furnace: closed box, every face emits Le = 1 and reflects rho = 0.5."""
     g = Gltf("white_box")
@@ -434,6 +461,7 @@ def main():
     cornell_box()
     two_rooms(open_door=False)
     two_rooms(open_door=True)
+    two_rooms_plane_wall()
     white_box()
     box_on_floor()
 
