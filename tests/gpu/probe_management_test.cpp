@@ -144,7 +144,7 @@ class RelocationTest : public ProbeManagementTest {
 //   do leak.
 // docs/probe-management.md lists the measured values.
 TEST_F(RelocationTest, MovesProbesOutOfAClosedWallAndTheFloor) {
-  load("two_rooms_closed.gltf");
+  ASSERT_NO_FATAL_FAILURE(load("two_rooms_closed.gltf"));
   const LeakMeasure clean = measure_clean();
 
   const IrradianceFieldParams in_floor = placed(-3.85f, 0.0f);
@@ -179,7 +179,7 @@ TEST_F(RelocationTest, MovesProbesOutOfAClosedWallAndTheFloor) {
 // classic DDGI light leak. Relocated (the fixed rays see the wall at distance ~0, a front face
 // both ways), it steps 0.2 m off the wall to one side, and the leak drops.
 TEST_F(RelocationTest, MovesProbesOutOfAPlaneWallAndTheFloorAndTheLeakDrops) {
-  load("two_rooms_plane_wall.gltf");
+  ASSERT_NO_FATAL_FAILURE(load("two_rooms_plane_wall.gltf"));
   const LeakMeasure clean = measure_clean();
 
   const IrradianceFieldParams in_wall = placed(-4.0f, 0.25f);  // plane 8 at x = 0, the wall
