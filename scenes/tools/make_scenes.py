@@ -363,20 +363,32 @@ WALL_T = 0.02
 DOOR_W, DOOR_H = 0.9, 2.0
 
 
-def two_rooms(open_door):
-    name = "two_rooms_open" if open_door else "two_rooms_closed"
-    g = Gltf(name)
+def two_room_shell(g):
+    """The outer shell every two-room scene shares: two cells (lit x < 0, dark x > 0), faces
+    pointing into the rooms, each with its own material."""
     g.material("lit_room_white", (0.75, 0.75, 0.75))
     g.material("dark_room_white", (0.75, 0.75, 0.75))
-    g.material("shared_wall_white", (0.75, 0.75, 0.75))
-    g.material("door_grey", (0.6, 0.6, 0.6))
     zd = ROOM_D / 2.0
-    # Outer shell: two cells (lit x < 0, dark x > 0), faces pointing into the rooms.
     shell = cell_faces([[SHELL_X0, 0.0, SHELL_X1], [0.0, ROOM_H], [-zd, zd]],
                        lambda i, j, k: True, inward=True,
                        material_of=lambda i, j, k: "lit_room_white" if i == 0 else "dark_room_white")
     g.mesh_node("rooms_shell", [(shell["lit_room_white"], "lit_room_white"),
                                 (shell["dark_room_white"], "dark_room_white")])
+
+
+def two_room_light_and_camera(g):
+    """The light in the lit room, and the camera in the dark room looking at the shared wall."""
+    g.point_light("lit_room_light", (-2.05, 2.5, 0.0), 10.0)
+    g.camera("camera", (3.4, 1.6, 1.6), (0.0, 1.0, -0.1), 60.0)
+
+
+def two_rooms(open_door):
+    name = "two_rooms_open" if open_door else "two_rooms_closed"
+    g = Gltf(name)
+    two_room_shell(g)
+    g.material("shared_wall_white", (0.75, 0.75, 0.75))
+    g.material("door_grey", (0.6, 0.6, 0.6))
+    zd = ROOM_D / 2.0
     # Shared wall: a closed slab x in [-t/2, t/2] with a doorway cut out of it (the cell
     # z in [-w/2, w/2], y in [0, h] is empty).
     t2, w2 = WALL_T / 2.0, DOOR_W / 2.0
@@ -389,8 +401,7 @@ def two_rooms(open_door):
     door = box((-WALL_T, 0.0, 0.0), (0.0, DOOR_H, DOOR_W))
     g.mesh_node("door", [(door, "door_grey")], translation=(t2, 0.0, -w2),
                 rotation=quat_y(90.0) if open_door else [0.0, 0.0, 0.0, 1.0])
-    g.point_light("lit_room_light", (-2.05, 2.5, 0.0), 10.0)
-    g.camera("camera", (3.4, 1.6, 1.6), (0.0, 1.0, -0.1), 60.0)
+    two_room_light_and_camera(g)
     g.write(name + ".gltf", {
         "purpose": "Light-leak test: a lit room and a dark room share a 2 cm wall with a "
                    "doorway; the door node is " + ("open." if open_door else "closed."),
@@ -405,20 +416,13 @@ def two_rooms_plane_wall():
     double-sided quad in the plane x = 0, as game art models partitions. A probe in that plane
     sees both rooms, the classic light leak that relocation must fix."""
     g = Gltf("two_rooms_plane_wall")
-    g.material("lit_room_white", (0.75, 0.75, 0.75))
-    g.material("dark_room_white", (0.75, 0.75, 0.75))
+    two_room_shell(g)
     g.material("plane_wall_white", (0.75, 0.75, 0.75), double_sided=True)
     zd = ROOM_D / 2.0
-    shell = cell_faces([[SHELL_X0, 0.0, SHELL_X1], [0.0, ROOM_H], [-zd, zd]],
-                       lambda i, j, k: True, inward=True,
-                       material_of=lambda i, j, k: "lit_room_white" if i == 0 else "dark_room_white")
-    g.mesh_node("rooms_shell", [(shell["lit_room_white"], "lit_room_white"),
-                                (shell["dark_room_white"], "dark_room_white")])
     wall = MeshData()
     wall.rect(0, 0.0, (0.0, 0.0, -zd), (0.0, ROOM_H, zd), -1)  # front face towards the light
     g.mesh_node("plane_wall", [(wall, "plane_wall_white")])
-    g.point_light("lit_room_light", (-2.05, 2.5, 0.0), 10.0)
-    g.camera("camera", (3.4, 1.6, 1.6), (0.0, 1.0, -0.1), 60.0)
+    two_room_light_and_camera(g)
     g.write("two_rooms_plane_wall.gltf", {
         "purpose": "Light-leak test: a lit room and a dark room split by a zero-thickness, "
                    "double-sided wall (one quad at x = 0, no doorway).",
