@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/result.h"
-#include "render/frame_types.h"
+#include "gpu_scene/frame_types.h"
 #include "scene/scene.h"
 
 namespace ddgi {

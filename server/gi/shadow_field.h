@@ -12,8 +12,8 @@
 
 #include "core/result.h"
 #include "gi/shadow_params.h"
-#include "render/frame_types.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/frame_types.h"
+#include "gpu_scene/gpu_scene.h"
 #include "shared/shadow_field_data.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"

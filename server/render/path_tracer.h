@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/result.h"
-#include "render/frame_types.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/frame_types.h"
+#include "gpu_scene/gpu_scene.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"

@@ -8,7 +8,7 @@
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
 #include "gi/irradiance_field.h"
-#include "render/frame_types.h"
+#include "gpu_scene/frame_types.h"
 #include "scene/scene.h"
 #include "service/limits.h"
 

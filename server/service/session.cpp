@@ -6,7 +6,7 @@
 #include "core/log.h"
 #include "gi/field_param_table.h"
 #include "gi/shadow_params_table.h"
-#include "render/camera_fit.h"
+#include "gpu_scene/camera_fit.h"
 #include "scene/gltf_loader.h"
 #include "service/atlas_export.h"
 #include "service/grpc_status.h"

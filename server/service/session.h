@@ -20,7 +20,7 @@
 #include "ddgi/v1/render_service.pb.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "service/convert.h"

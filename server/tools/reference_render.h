@@ -5,8 +5,8 @@
 #include <string>
 
 #include "core/result.h"
-#include "render/frame_types.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/frame_types.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/path_tracer.h"
 #include "vk/context.h"
 

@@ -4,7 +4,7 @@
 
 #include "common/math.glsl"
 
-// Rec. 709 luminance (server/render/emitter_table.cpp weighs emitters with the same one).
+// Rec. 709 luminance (server/gpu_scene/emitter_table.cpp weighs emitters with the same one).
 float luminance(vec3 c) { return dot(max(c, vec3(0.0)), vec3(0.2126, 0.7152, 0.0722)); }
 
 float max_component(vec3 c) { return max(c.x, max(c.y, c.z)); }

@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "gi/irradiance_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"

@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/irradiance_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "gi/irradiance_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 
 namespace ddgi::test {
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "gi/irradiance_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "scene/gltf_loader.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/two_rooms.h"

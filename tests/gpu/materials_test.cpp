@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"

@@ -10,7 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "tests/gpu/gpu_test.h"

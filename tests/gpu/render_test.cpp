@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "render/camera_fit.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/camera_fit.h"
+#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tests/gpu/gpu_test.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gi/shadow_field.h"
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 

@@ -1,4 +1,4 @@
-#include "render/gpu_scene.h"
+#include "gpu_scene/gpu_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/log.h"
-#include "render/emitter_table.h"
+#include "gpu_scene/emitter_table.h"
 
 namespace ddgi {
 namespace {

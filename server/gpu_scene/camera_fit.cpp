@@ -1,4 +1,4 @@
-#include "render/camera_fit.h"
+#include "gpu_scene/camera_fit.h"
 
 #include <cmath>
 

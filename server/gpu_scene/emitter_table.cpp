@@ -1,4 +1,4 @@
-#include "render/emitter_table.h"
+#include "gpu_scene/emitter_table.h"
 
 #include <algorithm>
 #include <cmath>

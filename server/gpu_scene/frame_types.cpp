@@ -1,4 +1,4 @@
-#include "render/frame_types.h"
+#include "gpu_scene/frame_types.h"
 
 namespace ddgi {
 
