@@ -9,11 +9,11 @@
 
 #include "encode/exr.h"
 #include "gi/irradiance_field.h"
+#include "gpu_scene/camera_fit.h"
+#include "gpu_scene/gpu_scene.h"
 #include "metrics/flip.h"
 #include "metrics/pixel_error.h"
 #include "metrics/ssim.h"
-#include "gpu_scene/camera_fit.h"
-#include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tests/gpu/gpu_test.h"
