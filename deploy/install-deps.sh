@@ -16,7 +16,7 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -q
 
 $SUDO apt-get install -y -q --no-install-recommends \
-  build-essential cmake ninja-build pkg-config git ca-certificates \
+  build-essential cmake ninja-build pkg-config git ca-certificates python3 \
   clang libclang-rt-14-dev clang-format \
   libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools \
   libglm-dev \

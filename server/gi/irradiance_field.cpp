@@ -11,12 +11,18 @@
 namespace ddgi {
 namespace {
 
-static_assert(sizeof(gpu::FieldConstants) % 4 == 0 && sizeof(gpu::FieldConstants) <= 65536,
-              "FieldConstants is written with vkCmdUpdateBuffer");
 static_assert(sizeof(gpu::ProbeRay) == 64);
 static_assert(sizeof(gpu::FieldDispatch) == 32);
 
 constexpr uint32_t kMaxTimedPasses = 16;
+
+// `pass` with its declared reads and writes.
+vk::Pass with_access(vk::Pass pass, std::vector<vk::ResourceRef> reads,
+                     std::vector<vk::ResourceRef> writes) {
+  pass.reads = std::move(reads);
+  pass.writes = std::move(writes);
+  return pass;
+}
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
 
 // SplitMix64: a counter-based generator, so update n's rotation depends only on (seed, n).
@@ -232,23 +238,27 @@ Status IrradianceField::write_probe_list(const std::vector<uint32_t>& probes) {
   return ok_status();
 }
 
-void IrradianceField::record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel,
-                                    uint32_t list_start, uint32_t list_size, uint32_t probes,
-                                    uint32_t per_probe, uint32_t first_ray, uint32_t mode,
-                                    VkDescriptorSet shadow_set) {
-  const uint64_t count = uint64_t(probes) * per_probe;
+vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel,
+                                      const LinearWork& work, VkDescriptorSet shadow_set) const {
+  const uint64_t count = uint64_t(work.probes) * work.per_probe;
   const vk::LinearDispatch d = vk::linear_dispatch(static_cast<uint32_t>(count));
   const gpu::FieldDispatch push{static_cast<uint32_t>(count),
                                 d.row_width,
-                                list_start,
-                                std::max(list_size, 1u),
-                                per_probe,
-                                first_ray,
-                                mode,
+                                work.list_start,
+                                std::max(work.list_size, 1u),
+                                work.per_probe,
+                                0,
+                                work.mode,
                                 0};
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_, shadow_set};
-  kernel.dispatch(cmd, std::span<const VkDescriptorSet>(sets, shadow_set ? 4 : 3), &push, d.size);
-  vk::barrier_all(cmd);
+  vk::Pass pass;
+  pass.name = name;
+  pass.group = vk::PassGroup::kIrradianceField;
+  pass.kernel = &kernel;
+  pass.sets = {scene_.descriptor_set(), update_set_, sampling_set_};
+  if (shadow_set) pass.sets.push_back(shadow_set);
+  pass.push_constants = vk::Pass::push(push);
+  pass.size = d.size;
+  return pass;
 }
 
 Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool relocate,
@@ -259,19 +269,19 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
   const uint32_t n = static_cast<uint32_t>(probes.size());
   const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
   // One submission: (trace fixed rays, relocate) x iterations, trace fixed rays, classify.
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
-    vk::barrier_all(cmd);
-    const uint32_t iterations = relocate ? params_.relocation_iterations : 0;
-    for (uint32_t i = 0; i < iterations; ++i) {
-      record_linear(cmd, trace_, 0, n, n, params_.fixed_rays);
-      record_linear(cmd, manage_, 0, n, n, 1, 0, gpu::kProbeModeRelocate);
-    }
-    if (params_.classification) {
-      record_linear(cmd, trace_, 0, n, n, params_.fixed_rays);
-      record_linear(cmd, manage_, 0, n, n, 1, 0, gpu::kProbeModeClassify);
-    }
-  }));
+  std::vector<vk::Pass> passes = {
+      vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_, c)};
+  auto fixed_rays_then = [&](uint32_t mode) {
+    passes.push_back(with_access(linear_pass("field trace", trace_, {0, n, n, params_.fixed_rays}),
+                                 {&probes_, &probe_list_}, {&rays_}));
+    passes.push_back(with_access(linear_pass("probe management", manage_, {0, n, n, 1, mode}),
+                                 {&rays_, &probe_list_}, {&probes_}));
+  };
+  const uint32_t iterations = relocate ? params_.relocation_iterations : 0;
+  for (uint32_t i = 0; i < iterations; ++i) fixed_rays_then(gpu::kProbeModeRelocate);
+  if (params_.classification) fixed_rays_then(gpu::kProbeModeClassify);
+  DDGI_TRY(context_.submit_and_wait(
+      [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, passes); }));
   if (!params_.classification) return ok_status();
 
   // The GPU's verdicts, then what only the CPU knows: probes near moving objects are Awake.
@@ -423,8 +433,7 @@ uint32_t IrradianceField::traced_lights(DirectMode direct_mode) const {
   return lights - std::min(lights, shadow_field_->kept_lights());
 }
 
-void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
-                                    DirectMode frame_mode) {
+std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
   const DirectMode direct_mode = probe_mode(frame_mode);
   if (scheduler_.take_active_changed() || !probe_list_is_active_) {
     (void)write_probe_list(scheduler_.active());
@@ -440,36 +449,39 @@ void IrradianceField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer,
   last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_traced_lights_ = traced_lights(direct_mode);
 
-  const gpu::FieldConstants c = constants(direct_mode);
-  vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
-  vk::barrier_all(cmd);
   const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
-  auto run = [&](const vk::Kernel& kernel, const char* pass, uint32_t per_probe,
-                 VkDescriptorSet shadow_set = VK_NULL_HANDLE) {
-    timer.begin_pass(cmd, pass);
-    record_linear(cmd, kernel, window.start, probe_list_size_, window.count, per_probe, 0, 0,
-                  shadow_set);
-    timer.end_pass(cmd);
+  auto work = [&](uint32_t per_probe) -> LinearWork {
+    return {window.start, probe_list_size_, window.count, per_probe};
   };
-  run(trace_, "field trace", total_rays);
-  if (shadow_field_ && uses_shadow_field(direct_mode)) {
-    run(shade_with_shadow_field_, "field shade", params_.rays_per_probe,
-        shadow_field_->sampling_set());
-  } else {
-    run(shade_, "field shade", params_.rays_per_probe);
-  }
-  run(blend_irradiance_, "blend irradiance", ti * ti);
-  run(blend_distance_, "blend distance", td * td);
-  run(borders_, "borders", 4 * (std::max(ti, td) + 1));
+  const bool reads_shadow_field = shadow_field_ && uses_shadow_field(direct_mode);
+  const vk::Kernel& shade = reads_shadow_field ? shade_with_shadow_field_ : shade_;
+  const VkDescriptorSet shadow_set =
+      reads_shadow_field ? shadow_field_->sampling_set() : VK_NULL_HANDLE;
+  std::vector<vk::Pass> passes = {
+      vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_,
+                      constants(direct_mode)),
+      with_access(linear_pass("field trace", trace_, work(total_rays)), {&probes_, &probe_list_},
+                  {&rays_}),
+      with_access(linear_pass("field shade", shade, work(params_.rays_per_probe), shadow_set),
+                  {&rays_, &irradiance_, &distance_}, {&rays_}),
+      with_access(linear_pass("blend irradiance", blend_irradiance_, work(ti * ti)),
+                  {&rays_, &probes_}, {&irradiance_}),
+      with_access(linear_pass("blend distance", blend_distance_, work(td * td)), {&rays_, &probes_},
+                  {&distance_, &probes_}),
+      with_access(linear_pass("borders", borders_, work(4 * (std::max(ti, td) + 1))), {},
+                  {&irradiance_, &distance_}),
+  };
   ++update_index_;
+  return passes;
 }
 
 Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, DirectMode direct_mode) {
   DDGI_TRY(prepare());
   for (uint32_t i = 0; i < count; ++i) {
+    const std::vector<vk::Pass> passes = update_passes(direct_mode);
     DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
       timer_.begin_frame(cmd);
-      record_update(cmd, timer_, direct_mode);
+      vk::record_passes(cmd, &timer_, passes);
     }));
   }
   context_.collect_garbage();

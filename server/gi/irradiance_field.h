@@ -15,6 +15,7 @@
 #include "gpu_scene/gpu_scene.h"
 #include "shared/field_data.h"
 #include "vk/context.h"
+#include "vk/pass.h"
 #include "vk/pipeline.h"
 #include "vk/resources.h"
 #include "vk/timer.h"
@@ -52,9 +53,10 @@ class IrradianceField {
   DirectMode probe_mode(DirectMode frame_mode) const {
     return params_.probe_direct.value_or(frame_mode);
   }
-  // Records one update into `cmd`, timing its passes with `timer`: the next window of active
-  // probes (all of them unless max_rays_per_update caps it), lit in probe_mode(direct_mode).
-  void record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode);
+  // The passes of one update: the next window of active probes (all of them unless
+  // max_rays_per_update caps it), lit in probe_mode(frame_mode). Building the list advances the
+  // field (probe window, update index): record every list built, once, in order.
+  std::vector<vk::Pass> update_passes(DirectMode frame_mode);
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
   // Converges a new field quickly: three quarters of `count` updates at hysteresis <= 0.5, so
@@ -103,11 +105,17 @@ class IrradianceField {
   Status manage_probes(const std::vector<uint32_t>& probes, bool relocate,
                        const std::vector<Bounds>& dynamic_regions);
   Status write_probe_list(const std::vector<uint32_t>& probes);
+  // One invocation per (probe, item) over `probes` entries of the probe list from `list_start`.
+  struct LinearWork {
+    uint32_t list_start = 0;
+    uint32_t list_size = 0;
+    uint32_t probes = 0;
+    uint32_t per_probe = 0;
+    uint32_t mode = 0;  // kProbeMode* of the probe-management kernel
+  };
   // `shadow_set`: bound as set 3 when not null (the shade kernel's shadow-field variant).
-  void record_linear(VkCommandBuffer cmd, const vk::Kernel& kernel, uint32_t list_start,
-                     uint32_t list_size, uint32_t probes, uint32_t per_probe,
-                     uint32_t first_ray = 0, uint32_t mode = 0,
-                     VkDescriptorSet shadow_set = VK_NULL_HANDLE);
+  vk::Pass linear_pass(const char* name, const vk::Kernel& kernel, const LinearWork& work,
+                       VkDescriptorSet shadow_set = VK_NULL_HANDLE) const;
   Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels);
 
   vk::Context& context_;

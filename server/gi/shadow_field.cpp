@@ -276,44 +276,51 @@ gpu::ShadowFieldConstants ShadowField::constants(DirectMode direct_mode) const {
   return c;
 }
 
-void ShadowField::record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode) {
-  const gpu::ShadowFieldConstants c = constants(direct_mode);
-  vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
-  vk::barrier_all(cmd);
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), update_set_, sampling_set_};
+std::vector<vk::Pass> ShadowField::update_passes(DirectMode direct_mode) {
   const uint64_t probes = probe_count(params_);
-  auto run = [&](const vk::Kernel& kernel, const char* pass, uint32_t per_probe, uint32_t mode) {
+  auto pass = [&](const vk::Kernel& kernel, const char* name, uint32_t per_probe, uint32_t mode,
+                  std::vector<vk::ResourceRef> reads, std::vector<vk::ResourceRef> writes) {
     const uint32_t count = static_cast<uint32_t>(probes * per_probe);
     const vk::LinearDispatch d = vk::linear_dispatch(count);
-    const gpu::ShadowDispatch push{count, d.row_width, mode, per_probe};
-    timer.begin_pass(cmd, pass);
-    kernel.dispatch(cmd, sets, &push, d.size);
-    timer.end_pass(cmd);
-    vk::barrier_all(cmd);
+    vk::Pass p;
+    p.name = name;
+    p.group = vk::PassGroup::kShadowField;
+    p.kernel = &kernel;
+    p.sets = {scene_.descriptor_set(), update_set_, sampling_set_};
+    p.push_constants = vk::Pass::push(gpu::ShadowDispatch{count, d.row_width, mode, per_probe});
+    p.size = d.size;
+    p.reads = std::move(reads);
+    p.writes = std::move(writes);
+    return p;
   };
   const uint32_t rays = params_.rays_per_probe;
   const uint32_t t = params_.texels;
+  std::vector<vk::Pass> passes = {vk::upload_pass("shadow constants", vk::PassGroup::kShadowField,
+                                                  constants_, constants(direct_mode))};
   if (params_.split_update) {
-    run(trace_, "shadow trace+rays", rays, gpu::kShadowPassShadow | gpu::kShadowPassPrimary);
+    passes.push_back(pass(trace_, "shadow trace+rays", rays,
+                          gpu::kShadowPassShadow | gpu::kShadowPassPrimary, {&rays_}, {&rays_}));
   } else {
-    run(trace_, "shadow trace", rays, gpu::kShadowPassPrimary);
-    run(trace_, "shadow rays", rays, gpu::kShadowPassShadow);
+    passes.push_back(pass(trace_, "shadow trace", rays, gpu::kShadowPassPrimary, {}, {&rays_}));
+    passes.push_back(pass(trace_, "shadow rays", rays, gpu::kShadowPassShadow, {&rays_}, {&rays_}));
   }
-  run(blend_, "shadow blend", t * t, 0);
-  run(borders_, "shadow borders", 4 * (t + 1), 0);
+  passes.push_back(pass(blend_, "shadow blend", t * t, 0, {&rays_}, {&visibility_, &moments_}));
+  passes.push_back(pass(borders_, "shadow borders", 4 * (t + 1), 0, {}, {&visibility_, &moments_}));
 
   // An AO history exists once an update blended valid AO results.
   const bool blended = updates_since_reset_ + 1 >= (params_.split_update ? 2u : 1u);
   if (direct_mode == DirectMode::kAmbientOcclusion && blended) ao_history_ = true;
   ++update_index_;
   ++updates_since_reset_;
+  return passes;
 }
 
 Result<std::vector<vk::PassTime>> ShadowField::update(uint32_t count, DirectMode direct_mode) {
   for (uint32_t i = 0; i < count; ++i) {
+    const std::vector<vk::Pass> passes = update_passes(direct_mode);
     DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
       timer_.begin_frame(cmd);
-      record_update(cmd, timer_, direct_mode);
+      vk::record_passes(cmd, &timer_, passes);
     }));
   }
   context_.collect_garbage();

@@ -16,6 +16,7 @@
 #include "gpu_scene/gpu_scene.h"
 #include "shared/shadow_field_data.h"
 #include "vk/context.h"
+#include "vk/pass.h"
 #include "vk/pipeline.h"
 #include "vk/resources.h"
 #include "vk/timer.h"
@@ -53,9 +54,10 @@ class ShadowField {
   // Drops all history: the next update replaces every texel.
   Status reset();
 
-  // Records one update into `cmd`, timing its passes (named "shadow ...") with `timer`.
-  // `direct_mode` kAmbientOcclusion also traces and blends the AO rays.
-  void record_update(VkCommandBuffer cmd, vk::GpuTimer& timer, DirectMode direct_mode);
+  // The passes of one update (named "shadow ...", group kShadowField). `direct_mode`
+  // kAmbientOcclusion also traces and blends the AO rays. Building the list advances the field:
+  // record every list built, once, in order.
+  std::vector<vk::Pass> update_passes(DirectMode direct_mode);
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
 

@@ -89,35 +89,14 @@ Status PathTracer::create_kernels() {
 }
 
 Status PathTracer::resize(uint32_t width, uint32_t height) {
-  if (width == width_ && height == height_) return ok_status();
-  const VkDeviceSize pixels = VkDeviceSize(width) * height;
-  const VkBufferUsageFlags usage =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-  // Drop the old buffers first so the budget sees only the new ones.
-  radiance_.reset();
-  ldr_.reset();
-  radiance_readback_.reset();
-  ldr_readback_.reset();
-  width_ = height_ = 0;
+  if (width == images_.width && height == images_.height) return ok_status();
+  images_ = {};  // first, so that the budget sees only the new buffers
   samples_ = 0;
-  DDGI_ASSIGN_OR_RETURN(
-      radiance_, vk::Buffer::create(context_, pixels * 16, usage, vk::MemoryUsage::kDeviceLocal,
-                                    "path-traced radiance"));
-  DDGI_ASSIGN_OR_RETURN(ldr_, vk::Buffer::create(context_, pixels * 4, usage,
-                                                 vk::MemoryUsage::kDeviceLocal, "path-traced ldr"));
-  DDGI_ASSIGN_OR_RETURN(
-      radiance_readback_,
-      vk::Buffer::create(context_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                         vk::MemoryUsage::kReadback, "path-traced radiance readback"));
-  DDGI_ASSIGN_OR_RETURN(ldr_readback_,
-                        vk::Buffer::create(context_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "path-traced ldr readback"));
+  DDGI_ASSIGN_OR_RETURN(images_, ImageBuffers::create(context_, width, height, "path-traced"));
   vk::DescriptorWriter(set_)
-      .buffer(gpu::kPathTraceBindingRadiance, radiance_)
-      .buffer(gpu::kPathTraceBindingLdr, ldr_)
+      .buffer(gpu::kPathTraceBindingRadiance, images_.radiance)
+      .buffer(gpu::kPathTraceBindingLdr, images_.ldr)
       .apply(context_.device());
-  width_ = width;
-  height_ = height;
   return ok_status();
 }
 
@@ -158,10 +137,16 @@ Status PathTracer::accumulate(const PathTraceSettings& settings, uint32_t sample
   pc.max_bounces = settings.max_bounces;
   pc.roulette_start = settings.roulette_start;
   pc.jitter = settings.jitter ? 1u : 0u;
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), set_};
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    path_trace_.dispatch(cmd, sets, &pc, {settings.width, settings.height, 1});
-  }));
+  vk::Pass pass;
+  pass.name = "path trace";
+  pass.kernel = &path_trace_;
+  pass.sets = {scene_.descriptor_set(), set_};
+  pass.push_constants = vk::Pass::push(pc);
+  pass.size = {settings.width, settings.height, 1};
+  pass.reads = {&images_.radiance};
+  pass.writes = {&images_.radiance};
+  DDGI_TRY(context_.submit_and_wait(
+      [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, std::span(&pass, 1)); }));
   settings_ = settings;
   scene_revision_ = scene_.revision();
   samples_ += samples;
@@ -174,25 +159,25 @@ Result<PathTraceImage> PathTracer::read(Tonemap tonemap, float exposure) {
   if (!(exposure > 0.0f) || !(exposure <= 1e9f)) {
     return invalid_argument("exposure must be in (0, 1e9] (got " + std::to_string(exposure) + ")");
   }
-  const gpu::TonemapConstants constants{width_, height_, static_cast<uint32_t>(tonemap), exposure};
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), set_};
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    tonemap_.dispatch(cmd, sets, &constants, {width_, height_, 1});
-    vk::barrier_all(cmd);
-    const VkBufferCopy radiance_copy{0, 0, radiance_.size()};
-    vkCmdCopyBuffer(cmd, radiance_.handle(), radiance_readback_.handle(), 1, &radiance_copy);
-    const VkBufferCopy ldr_copy{0, 0, ldr_.size()};
-    vkCmdCopyBuffer(cmd, ldr_.handle(), ldr_readback_.handle(), 1, &ldr_copy);
-  }));
+  const gpu::TonemapConstants constants{images_.width, images_.height,
+                                        static_cast<uint32_t>(tonemap), exposure};
+  vk::Pass tonemap_pass;
+  tonemap_pass.name = "tonemap";
+  tonemap_pass.kernel = &tonemap_;
+  tonemap_pass.sets = {scene_.descriptor_set(), set_};
+  tonemap_pass.push_constants = vk::Pass::push(constants);
+  tonemap_pass.size = {images_.width, images_.height, 1};
+  tonemap_pass.reads = {&images_.radiance};
+  tonemap_pass.writes = {&images_.ldr};
+  const vk::Pass passes[] = {tonemap_pass, images_.readback_pass(true)};
+  DDGI_TRY(context_.submit_and_wait(
+      [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, passes); }));
   PathTraceImage image;
-  image.width = width_;
-  image.height = height_;
+  image.width = images_.width;
+  image.height = images_.height;
   image.samples = samples_;
-  const size_t pixels = size_t(width_) * height_;
-  image.radiance.resize(pixels * 4);
-  std::memcpy(image.radiance.data(), radiance_readback_.mapped(), pixels * 16);
-  image.ldr.resize(pixels * 4);
-  std::memcpy(image.ldr.data(), ldr_readback_.mapped(), pixels * 4);
+  image.radiance = images_.read_radiance();
+  image.ldr = images_.read_ldr();
   return image;
 }
 

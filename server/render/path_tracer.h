@@ -14,6 +14,7 @@
 #include "core/result.h"
 #include "gpu_scene/frame_types.h"
 #include "gpu_scene/gpu_scene.h"
+#include "render/frame_target.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
@@ -91,12 +92,7 @@ class PathTracer {
   vk::Kernel path_trace_;
   vk::Kernel tonemap_;
 
-  uint32_t width_ = 0;
-  uint32_t height_ = 0;
-  vk::Buffer radiance_;
-  vk::Buffer ldr_;
-  vk::Buffer radiance_readback_;
-  vk::Buffer ldr_readback_;
+  ImageBuffers images_;
 
   PathTraceSettings settings_;  // of the accumulated samples
   uint64_t scene_revision_ = 0;

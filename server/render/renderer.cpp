@@ -1,3 +1,4 @@
+// The frame passes (render/renderer.h).
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -8,10 +9,6 @@
 
 namespace ddgi {
 namespace {
-
-constexpr uint32_t kMaxImageDimension = 16384;
-// Field updates + shadow-field updates + frame passes.
-constexpr uint32_t kMaxTimedPasses = 5 * 64 + 4 * 64 + 8;
 
 static_assert(sizeof(gpu::GBufferTexel) == 40);
 static_assert(sizeof(gpu::PrimaryConstants) == 64);
@@ -27,20 +24,7 @@ bool finite(const glm::vec3& v) {
 }  // namespace
 
 Status validate(const FrameSettings& s) {
-  if (s.width < 1 || s.width > kMaxImageDimension || s.height < 1 ||
-      s.height > kMaxImageDimension) {
-    return invalid_argument(
-        "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-        " is out of range: each side must be in [1, " + std::to_string(kMaxImageDimension) + "]");
-  }
-  if (s.field_updates > 64) {
-    return invalid_argument("field updates per frame must be in [0, 64] (got " +
-                            std::to_string(s.field_updates) + ")");
-  }
-  if (s.shadow_field_updates > 64) {
-    return invalid_argument("shadow field updates per frame must be in [0, 64] (got " +
-                            std::to_string(s.shadow_field_updates) + ")");
-  }
+  DDGI_TRY(validate_image_size(s.width, s.height));
   if (s.light_samples < 1 || s.light_samples > 64) {
     return invalid_argument("light samples per pixel must be in [1, 64] (got " +
                             std::to_string(s.light_samples) + ")");
@@ -85,17 +69,12 @@ Result<std::unique_ptr<Renderer>> Renderer::create(vk::Context& context, GpuScen
   std::unique_ptr<Renderer> renderer(new Renderer(context, scene, field, shadow_field));
   renderer->backend_ = backend;
   DDGI_TRY(renderer->create_kernels());
-  DDGI_ASSIGN_OR_RETURN(renderer->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
   return renderer;
 }
 
 Status Renderer::create_kernels() {
-  DDGI_ASSIGN_OR_RETURN(frame_layout_, vk::DescriptorLayout::create(context_,
-                                                                    {{gpu::kFrameBindingGBuffer},
-                                                                     {gpu::kFrameBindingRadiance},
-                                                                     {gpu::kFrameBindingLdr}},
-                                                                    1, "frame set"));
-  DDGI_ASSIGN_OR_RETURN(frame_set_, frame_layout_.allocate());
+  DDGI_ASSIGN_OR_RETURN(
+      frame_layout_, vk::DescriptorLayout::create(context_, frame_set_bindings(), 1, "frame set"));
   const std::vector<VkDescriptorSetLayout> layouts = {scene_.layout(), frame_layout_.handle()};
   DDGI_ASSIGN_OR_RETURN(
       primary_, vk::Kernel::create(
@@ -132,56 +111,34 @@ Status Renderer::create_kernels() {
   return ok_status();
 }
 
-Status Renderer::resize(uint32_t width, uint32_t height) {
-  if (width == width_ && height == height_) return ok_status();
-  const VkDeviceSize pixels = VkDeviceSize(width) * height;
-  const VkBufferUsageFlags usage =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-  // Drop the old buffers first so the budget sees only the new ones.
-  gbuffer_.reset();
-  radiance_.reset();
-  ldr_.reset();
-  radiance_readback_.reset();
-  ldr_readback_.reset();
-  width_ = height_ = 0;
-  DDGI_ASSIGN_OR_RETURN(gbuffer_,
-                        vk::Buffer::create(context_, pixels * sizeof(gpu::GBufferTexel), usage,
-                                           vk::MemoryUsage::kDeviceLocal, "gbuffer"));
-  DDGI_ASSIGN_OR_RETURN(radiance_, vk::Buffer::create(context_, pixels * 16, usage,
-                                                      vk::MemoryUsage::kDeviceLocal, "radiance"));
-  DDGI_ASSIGN_OR_RETURN(
-      ldr_, vk::Buffer::create(context_, pixels * 4, usage, vk::MemoryUsage::kDeviceLocal, "ldr"));
-  DDGI_ASSIGN_OR_RETURN(radiance_readback_,
-                        vk::Buffer::create(context_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "radiance readback"));
-  DDGI_ASSIGN_OR_RETURN(ldr_readback_,
-                        vk::Buffer::create(context_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "ldr readback"));
-  vk::DescriptorWriter(frame_set_)
-      .buffer(gpu::kFrameBindingGBuffer, gbuffer_)
-      .buffer(gpu::kFrameBindingRadiance, radiance_)
-      .buffer(gpu::kFrameBindingLdr, ldr_)
-      .apply(context_.device());
-  width_ = width;
-  height_ = height;
-  return ok_status();
-}
-
-Result<FrameResult> Renderer::render(const FrameSettings& settings) {
+Status Renderer::check_inputs(const FrameSettings& settings) const {
   DDGI_TRY(validate(settings));
   const bool field_view = settings.view == View::kProbes || settings.view == View::kAtlas;
   if (field_view && !field_) {
     return failed_precondition("the probes and atlas views need an irradiance field (GI is off)");
   }
-  const bool shadow_mode = uses_shadow_field(settings.direct_mode);
-  if (shadow_mode && !shadow_field_) {
+  if (uses_shadow_field(settings.direct_mode) && !shadow_field_) {
     return failed_precondition(std::string("the ") + direct_mode_name(settings.direct_mode) +
                                " direct mode needs a shadow field (none was created)");
   }
-  DDGI_TRY(resize(settings.width, settings.height));
-  const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
+  return ok_status();
+}
 
+namespace {
+
+// The push constants of one frame's passes.
+struct FrameConstants {
   gpu::PrimaryConstants primary{};
+  gpu::DirectConstants direct{};
+  gpu::IndirectConstants indirect{};
+  gpu::FieldViewConstants views{};
+  gpu::TonemapConstants tonemap{};
+};
+
+FrameConstants frame_constants(const FrameSettings& settings, const IrradianceField* field) {
+  const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
+  FrameConstants c;
+  gpu::PrimaryConstants& primary = c.primary;
   primary.camera_position = basis.position;
   primary.camera_forward = basis.forward;
   primary.camera_right = basis.right;
@@ -190,7 +147,7 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   primary.height = settings.height;
   primary.tmin = settings.camera.znear;
   primary.tmax = 1e30f;
-  gpu::DirectConstants direct{};
+  gpu::DirectConstants& direct = c.direct;
   direct.width = settings.width;
   direct.height = settings.height;
   direct.mode = static_cast<uint32_t>(settings.direct_mode);
@@ -198,20 +155,19 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   direct.camera_position = basis.position;
   direct.light_samples = settings.light_samples;
   // Without an irradiance field nothing else brings the sky: the AO mode adds it.
-  direct.flags = field_ ? 0u : gpu::kDirectAddSky;
+  direct.flags = field ? 0u : gpu::kDirectAddSky;
   // The field decides where emitter light comes from; the frame must agree or count it twice.
-  if (field_ && field_->params().emitter_samples > 0) {
+  if (field && field->params().emitter_samples > 0) {
     direct.flags |= gpu::kDirectSampleEmitters;
-    direct.emitter_samples = field_->params().emitter_samples;
+    direct.emitter_samples = field->params().emitter_samples;
   }
-  const gpu::TonemapConstants tonemap{settings.width, settings.height,
-                                      static_cast<uint32_t>(settings.tonemap), settings.exposure};
-  gpu::IndirectConstants indirect{};
-  indirect.camera_position = basis.position;
-  indirect.view = static_cast<uint32_t>(settings.view);
-  indirect.width = settings.width;
-  indirect.height = settings.height;
-  gpu::FieldViewConstants views{};
+  c.tonemap = {settings.width, settings.height, static_cast<uint32_t>(settings.tonemap),
+               settings.exposure};
+  c.indirect.camera_position = basis.position;
+  c.indirect.view = static_cast<uint32_t>(settings.view);
+  c.indirect.width = settings.width;
+  c.indirect.height = settings.height;
+  gpu::FieldViewConstants& views = c.views;
   views.camera_position = basis.position;
   views.view = static_cast<uint32_t>(settings.view);
   views.camera_forward = basis.forward;
@@ -219,86 +175,97 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings) {
   views.camera_right = basis.right;
   views.height = settings.height;
   views.camera_up = basis.up;
-  if (field_) {
-    const glm::vec3 spacing = field_->params().spacing;
+  if (field) {
+    const glm::vec3 spacing = field->params().spacing;
     views.probe_radius = 0.1f * std::min({spacing.x, spacing.y, spacing.z});
   }
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), frame_set_,
-                                  field_ ? field_->sampling_set() : VK_NULL_HANDLE};
-  const std::span<const VkDescriptorSet> frame_sets(sets, 2);
+  return c;
+}
+
+}  // namespace
+
+std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
+                                             const FrameTarget& target) const {
+  const FrameConstants c = frame_constants(settings, field_);
+  const std::vector<VkDescriptorSet> frame_sets = {scene_.descriptor_set(), target.frame_set()};
   const glm::uvec3 size{settings.width, settings.height, 1};
+  const vk::Buffer& gbuffer = target.gbuffer();
+  const vk::Buffer& radiance = target.images().radiance;
+  auto pass = [&](const char* name, const vk::Kernel& kernel, std::vector<VkDescriptorSet> sets,
+                  std::vector<uint8_t> push, std::vector<vk::ResourceRef> reads,
+                  std::vector<vk::ResourceRef> writes) {
+    vk::Pass p;
+    p.name = name;
+    p.group = vk::PassGroup::kFrame;
+    p.kernel = &kernel;
+    p.sets = std::move(sets);
+    p.push_constants = std::move(push);
+    p.size = size;
+    p.reads = std::move(reads);
+    p.writes = std::move(writes);
+    return p;
+  };
+  std::vector<vk::Pass> passes;
+  passes.push_back(
+      pass("primary", primary_, frame_sets, vk::Pass::push(c.primary), {}, {&gbuffer}));
+  if (uses_shadow_field(settings.direct_mode)) {
+    passes.push_back(
+        pass("direct", direct_shadow_field_,
+             {scene_.descriptor_set(), target.frame_set(), shadow_field_->sampling_set()},
+             vk::Pass::push(c.direct), {&gbuffer}, {&radiance}));
+  } else {
+    passes.push_back(
+        pass("direct", direct_, frame_sets, vk::Pass::push(c.direct), {&gbuffer}, {&radiance}));
+  }
+  if (field_) {
+    const std::vector<VkDescriptorSet> with_field = {scene_.descriptor_set(), target.frame_set(),
+                                                     field_->sampling_set()};
+    passes.push_back(pass("indirect", indirect_, with_field, vk::Pass::push(c.indirect),
+                          {&gbuffer, &radiance}, {&radiance}));
+    if (settings.view == View::kProbes || settings.view == View::kAtlas) {
+      passes.push_back(pass("field view", field_views_, with_field, vk::Pass::push(c.views),
+                            {&gbuffer, &radiance}, {&radiance}));
+    }
+  }
+  passes.push_back(pass("tonemap", tonemap_, frame_sets, vk::Pass::push(c.tonemap), {&radiance},
+                        {&target.images().ldr}));
+  passes.push_back(target.images().readback_pass(settings.read_radiance));
+  return passes;
+}
 
-  // The shadow field is updated when the frame reads it, or when the irradiance field's probe
-  // rays do (their own mode, field parameter probe_direct).
-  const DirectMode shadow_update_mode = shadow_field_mode(
-      settings.direct_mode, field_ && settings.field_updates > 0 ? &field_->params() : nullptr);
-  const bool update_shadow_field = shadow_field_ && uses_shadow_field(shadow_update_mode);
-  if (field_ && settings.field_updates > 0) DDGI_TRY(field_->prepare());
+Result<FrameResult> Renderer::render(const FrameSettings& settings,
+                                     std::span<const vk::Pass> before) {
+  DDGI_TRY(validate(settings));
+  if (!own_target_ || own_target_->width() != settings.width ||
+      own_target_->height() != settings.height) {
+    own_target_.reset();  // first, so that the budget sees only the new target
+    DDGI_ASSIGN_OR_RETURN(own_target_,
+                          FrameTarget::create(context_, settings.width, settings.height));
+  }
+  return render(settings, *own_target_, before);
+}
+
+Result<FrameResult> Renderer::render(const FrameSettings& settings, FrameTarget& target,
+                                     std::span<const vk::Pass> before) {
+  DDGI_TRY(check_inputs(settings));
+  if (target.width() != settings.width || target.height() != settings.height) {
+    return invalid_argument("the frame target is " + std::to_string(target.width()) + "x" +
+                            std::to_string(target.height()) + ", the frame " +
+                            std::to_string(settings.width) + "x" + std::to_string(settings.height));
+  }
+  const std::vector<vk::Pass> passes = frame_passes(settings, target);
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    timer_.begin_frame(cmd);
-    // The shadow field first: the irradiance field's probe rays read it in these modes.
-    if (update_shadow_field) {
-      for (uint32_t i = 0; i < settings.shadow_field_updates; ++i) {
-        shadow_field_->record_update(cmd, timer_, shadow_update_mode);
-      }
-    }
-    if (field_) {
-      for (uint32_t i = 0; i < settings.field_updates; ++i) {
-        field_->record_update(cmd, timer_, settings.direct_mode);
-      }
-    }
-    timer_.begin_pass(cmd, "primary");
-    primary_.dispatch(cmd, frame_sets, &primary, size);
-    timer_.end_pass(cmd);
-    vk::barrier_all(cmd);
-    timer_.begin_pass(cmd, "direct");
-    if (shadow_mode) {
-      const VkDescriptorSet shadow_sets[] = {scene_.descriptor_set(), frame_set_,
-                                             shadow_field_->sampling_set()};
-      direct_shadow_field_.dispatch(cmd, shadow_sets, &direct, size);
-    } else {
-      direct_.dispatch(cmd, frame_sets, &direct, size);
-    }
-    timer_.end_pass(cmd);
-    vk::barrier_all(cmd);
-    if (field_) {
-      timer_.begin_pass(cmd, "indirect");
-      indirect_.dispatch(cmd, sets, &indirect, size);
-      timer_.end_pass(cmd);
-      vk::barrier_all(cmd);
-    }
-    if (field_view) {
-      timer_.begin_pass(cmd, "field view");
-      field_views_.dispatch(cmd, sets, &views, size);
-      timer_.end_pass(cmd);
-      vk::barrier_all(cmd);
-    }
-    timer_.begin_pass(cmd, "tonemap");
-    tonemap_.dispatch(cmd, frame_sets, &tonemap, size);
-    timer_.end_pass(cmd);
-    vk::barrier_all(cmd);
-    timer_.begin_pass(cmd, "readback");
-    if (settings.read_radiance) {
-      VkBufferCopy radiance_copy{0, 0, radiance_.size()};
-      vkCmdCopyBuffer(cmd, radiance_.handle(), radiance_readback_.handle(), 1, &radiance_copy);
-    }
-    VkBufferCopy ldr_copy{0, 0, ldr_.size()};
-    vkCmdCopyBuffer(cmd, ldr_.handle(), ldr_readback_.handle(), 1, &ldr_copy);
-    timer_.end_pass(cmd);
+    target.timer().begin_frame(cmd);
+    vk::record_passes(cmd, &target.timer(), before);
+    vk::record_passes(cmd, &target.timer(), passes);
   }));
-
   FrameResult result;
   result.width = settings.width;
   result.height = settings.height;
-  const size_t pixels = size_t(settings.width) * settings.height;
-  if (settings.read_radiance) {
-    result.radiance.resize(pixels * 4);
-    std::memcpy(result.radiance.data(), radiance_readback_.mapped(), pixels * 16);
-  }
-  result.ldr.resize(pixels * 4);
-  std::memcpy(result.ldr.data(), ldr_readback_.mapped(), pixels * 4);
-  DDGI_ASSIGN_OR_RETURN(result.pass_times, timer_.read());
-  result.frame_index = frame_index_++;
+  if (settings.read_radiance) result.radiance = target.images().read_radiance();
+  result.ldr = target.images().read_ldr();
+  DDGI_ASSIGN_OR_RETURN(result.pass_times, target.timer().read());
+  result.frame_index = target.next_frame_index();
   context_.collect_garbage();
   return result;
 }

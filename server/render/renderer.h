@@ -1,8 +1,12 @@
-// Renders frames of one GPU scene: primary rays into a G-buffer, direct light, tone mapping,
-// readback. Owns the per-resolution frame buffers and the kernels of these passes.
+// Renders frames of one GPU scene: primary rays into a G-buffer, direct light, indirect light
+// from the irradiance field, tone mapping, readback. Owns the kernels of these passes, built
+// once per scene; frames are drawn into FrameTargets (one per view). It never decides when
+// fields update: the caller hands it the update passes (GiStack::frame_update) to record first,
+// in the same submission.
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -11,6 +15,7 @@
 #include "gi/shadow_field.h"
 #include "gpu_scene/frame_types.h"
 #include "gpu_scene/gpu_scene.h"
+#include "render/frame_target.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
@@ -32,15 +37,9 @@ struct FrameSettings {
   Tonemap tonemap = Tonemap::kAces;
   // Linear multiplier before tone mapping; (0, 1e9]. 1: radiance 1 maps to about mid-white.
   float exposure = 1.0f;
-  // Irradiance-field updates recorded before this frame's passes, in [0, 64]. 1: one update
-  // per frame, the real-time loop.
-  uint32_t field_updates = 1;
   // Copy the linear HDR image back (FrameResult::radiance). A stream that only encodes the
   // 8-bit image turns this off: at 1920x1080 the HDR copy is 33 MB per frame.
   bool read_radiance = true;
-  // Shadow-field updates recorded before this frame's passes when the direct mode uses the
-  // shadow field, in [0, 64]. 1: the real-time loop.
-  uint32_t shadow_field_updates = 1;
   // Shadow rays per spherical light (radius > 0) and pixel in the shadow-rays mode, [1, 64].
   // 1: the real-time default, noisy penumbrae; more give smooth soft shadows.
   uint32_t light_samples = 1;
@@ -65,14 +64,23 @@ class Renderer {
                                                   IrradianceField* field, vk::TraceBackend backend,
                                                   ShadowField* shadow_field = nullptr);
 
-  Result<FrameResult> render(const FrameSettings& settings);
+  // Renders one frame into `target` (made for the settings' size), after recording `before`
+  // (field updates) in the same submission.
+  Result<FrameResult> render(const FrameSettings& settings, FrameTarget& target,
+                             std::span<const vk::Pass> before = {});
+  // The same into the renderer's own target, resized to the settings' size as needed.
+  Result<FrameResult> render(const FrameSettings& settings, std::span<const vk::Pass> before = {});
+  // The passes of one frame into `target`, in order, each with its declared inputs and outputs.
+  std::vector<vk::Pass> frame_passes(const FrameSettings& settings,
+                                     const FrameTarget& target) const;
   vk::TraceBackend backend() const { return backend_; }
 
  private:
   Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field, ShadowField* shadow_field)
       : context_(context), scene_(scene), field_(field), shadow_field_(shadow_field) {}
   Status create_kernels();
-  Status resize(uint32_t width, uint32_t height);
+  // FAILED_PRECONDITION when the settings need a field this renderer was made without.
+  Status check_inputs(const FrameSettings& settings) const;
 
   vk::Context& context_;
   GpuScene& scene_;
@@ -80,23 +88,13 @@ class Renderer {
   ShadowField* shadow_field_ = nullptr;
   vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
   vk::DescriptorLayout frame_layout_;
-  VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
   vk::Kernel primary_;
   vk::Kernel direct_;
   vk::Kernel direct_shadow_field_;  // the direct pass with the shadow field bound as set 2
   vk::Kernel indirect_;
   vk::Kernel field_views_;
   vk::Kernel tonemap_;
-  vk::GpuTimer timer_;
-
-  uint32_t width_ = 0;
-  uint32_t height_ = 0;
-  vk::Buffer gbuffer_;
-  vk::Buffer radiance_;
-  vk::Buffer ldr_;
-  vk::Buffer radiance_readback_;
-  vk::Buffer ldr_readback_;
-  uint64_t frame_index_ = 0;
+  std::unique_ptr<FrameTarget> own_target_;  // for render() without a target
 };
 
 // Turns a camera into the primary-ray basis of a width x height image.

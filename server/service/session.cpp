@@ -132,22 +132,13 @@ void Session::produce_frame() {
   last_frame_start_ = std::chrono::steady_clock::now();
   ++frame_index_;
   // One update of each field per frame, recorded with the first view, shared by every view.
-  bool field_due = field_ != nullptr || shadow_field_ != nullptr;
+  bool field_due = field() != nullptr || shadow_field() != nullptr;
   std::vector<vk::PassTime> gi_passes;
   double gi_ms = 0.0;
   std::vector<std::string> done_views;
   for (auto& [view_id, view] : views_) {
     std::erase_if(view.streams, [](const auto& stream) { return stream->ended(); });
     if (view.streams.empty() && view.waiters.empty()) continue;
-    if (!view.renderer) {
-      auto renderer = make_renderer();
-      if (!renderer.ok()) {
-        fail_view(view, renderer.error());
-        if (view.one_off || view.owned_by_stream) done_views.push_back(view_id);
-        continue;
-      }
-      view.renderer = std::move(renderer).value();
-    }
     FrameSettings settings;
     settings.width = view.config.width;
     settings.height = view.config.height;
@@ -156,11 +147,9 @@ void Session::produce_frame() {
     settings.view = view.config.view;
     settings.tonemap = view.config.tonemap;
     settings.exposure = view.config.exposure;
-    settings.field_updates = field_due && field_ ? 1 : 0;
-    settings.shadow_field_updates = field_due && shadow_field_ ? 1 : 0;
     settings.read_radiance = false;  // views stream JPEG: only the 8-bit image is encoded
     const auto start = std::chrono::steady_clock::now();
-    Result<FrameResult> frame = view.renderer->render(settings);
+    Result<FrameResult> frame = render_view(view, settings, field_due);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!frame.ok()) {
@@ -170,12 +159,11 @@ void Session::produce_frame() {
       if (view.one_off || view.owned_by_stream) done_views.push_back(view_id);
       continue;
     }
-    // Passes recorded before "primary" are the field updates' (irradiance and shadow).
     std::vector<vk::PassTime> view_passes;
-    bool in_field = field_due;
     for (const vk::PassTime& pass : frame->pass_times) {
-      if (pass.name == "primary") in_field = false;
-      if (in_field) {
+      const bool gi_pass = pass.group == vk::PassGroup::kIrradianceField ||
+                           pass.group == vk::PassGroup::kShadowField;
+      if (gi_pass) {
         gi_passes.push_back(pass);
         gi_ms += pass.milliseconds;
       } else {
@@ -216,9 +204,9 @@ void Session::produce_frame() {
     out.set_last_command_seq(last_applied_seq_);
     out.set_last_command_arrival_unix_us(last_applied_arrival_us_);
     out.set_rendered_unix_us(unix_micros());
-    out.set_field_updates(field_          ? field_->updates()
-                          : shadow_field_ ? shadow_field_->updates()
-                                          : 0);
+    out.set_field_updates(field()          ? field()->updates()
+                          : shadow_field() ? shadow_field()->updates()
+                                           : 0);
     job->streams = view.streams;
     job->waiters = std::move(view.waiters);
     view.waiters.clear();
@@ -226,6 +214,26 @@ void Session::produce_frame() {
     if (view.one_off) done_views.push_back(view_id);
   }
   for (const std::string& view_id : done_views) erase_view(view_id);
+}
+
+Result<FrameResult> Session::render_view(ViewState& view, const FrameSettings& settings,
+                                         bool field_due) {
+  if (!renderer_) {
+    DDGI_ASSIGN_OR_RETURN(renderer_,
+                          Renderer::create(*env_.context, gi_->scene(), field(),
+                                           env_.context->default_backend(), shadow_field()));
+  }
+  if (!view.target || view.target->width() != settings.width ||
+      view.target->height() != settings.height) {
+    view.target.reset();  // first, so that the budget sees only the new target
+    DDGI_ASSIGN_OR_RETURN(view.target,
+                          FrameTarget::create(*env_.context, settings.width, settings.height));
+  }
+  std::vector<vk::Pass> update;
+  if (field_due) {
+    DDGI_ASSIGN_OR_RETURN(update, gi_->frame_update(settings.direct_mode, {}));
+  }
+  return renderer_->render(settings, *view.target, update);
 }
 
 void Session::teardown() {
@@ -243,10 +251,8 @@ void Session::teardown() {
     if (!view.one_off) env_.metrics->views.fetch_sub(1);
   }
   views_.clear();
-  spare_renderer_.reset();
-  field_.reset();
-  shadow_field_.reset();
-  gpu_scene_.reset();
+  renderer_.reset();
+  gi_.reset();
   env_.context->collect_garbage();
   env_.metrics->sessions.fetch_sub(1);
   LOG_INFO << "session closed session=" << id_ << " frames=" << frame_index_;
@@ -288,51 +294,31 @@ Status Session::load(const SceneRequest& request) {
     LOG_WARNING << "scene warning session=" << id_ << " scene=" << request.label << ": " << warning;
   }
   vk::Context& context = *env_.context;
-  DDGI_ASSIGN_OR_RETURN(std::unique_ptr<GpuScene> gpu, GpuScene::create(context, *scene));
-  // The shadow field first: the irradiance field's probe rays read it in its modes.
-  std::unique_ptr<ShadowField> shadow_field;
-  if (uses_shadow_field(options_.direct_mode)) {
-    ShadowFieldParams params = fit_shadow_grid(scene->world_bounds());
-    DDGI_TRY(apply_shadow_assignments(params, options_.shadow_assignments));
-    DDGI_ASSIGN_OR_RETURN(shadow_field,
-                          ShadowField::create(context, *gpu, params, context.default_backend()));
-    if (request.warmup_updates > 0) {
-      auto warm = shadow_field->update(request.warmup_updates, options_.direct_mode);
-      if (!warm.ok()) return warm.error();
-    }
-  }
-  std::unique_ptr<IrradianceField> field;
-  if (options_.gi) {
-    IrradianceFieldParams params = default_field_params(*scene);
-    DDGI_TRY(apply_field_assignments(params, options_.field_assignments));
-    DDGI_ASSIGN_OR_RETURN(field,
-                          IrradianceField::create(context, *gpu, params, context.default_backend(),
-                                                  shadow_field.get()));
-    // As ddgi-render does: fast convergence first, then the configured hysteresis.
-    if (request.warmup_updates > 0) {
-      DDGI_TRY(field->warm_up(request.warmup_updates, options_.direct_mode));
-      env_.metrics->field_updates.fetch_add(request.warmup_updates);
-    }
-  }
-  // Renderers point at the old scene and field: drop them before those go.
-  for (auto& [view_id, view] : views_) view.renderer.reset();
-  spare_renderer_.reset();
-  field_ = std::move(field);
-  shadow_field_ = std::move(shadow_field);
-  gpu_scene_ = std::move(gpu);
+  DDGI_ASSIGN_OR_RETURN(
+      const GiStackOptions options,
+      fitted_gi_options(*scene, options_.gi, options_.direct_mode, options_.field_assignments,
+                        options_.shadow_assignments, context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(std::unique_ptr<GiStack> gi, GiStack::create(context, *scene, options));
+  // As ddgi-render does: fast convergence first, then the configured hysteresis.
+  DDGI_TRY(gi->warm_up(request.warmup_updates));
+  if (gi->field()) env_.metrics->field_updates.fetch_add(request.warmup_updates);
+  // The renderer points at the old scene and fields: drop it before those go. View targets do
+  // not depend on the scene and stay.
+  renderer_.reset();
+  gi_ = std::move(gi);
   scene_label_ = request.label;
   warnings_ = scene->warnings;
   default_camera_ = default_camera(*scene);
   lights_.clear();
-  for (const Light& light : gpu_scene_->scene().lights) {
+  for (const Light& light : gi_->scene().scene().lights) {
     lights_.push_back({static_cast<uint32_t>(lights_.size()), light});
   }
   next_light_id_ = static_cast<uint32_t>(lights_.size());
   for (auto& [view_id, view] : views_) view.camera = default_camera_;
   LOG_INFO << "scene loaded session=" << id_ << " scene=" << request.label
-           << " triangles=" << gpu_scene_->triangle_count() << " lights=" << lights_.size()
-           << " gpu_bytes=" << gpu_scene_->gpu_bytes() + (field_ ? field_->gpu_bytes() : 0)
-           << " warmup=" << (field_ ? request.warmup_updates : 0);
+           << " triangles=" << gi_->scene().triangle_count() << " lights=" << lights_.size()
+           << " gpu_bytes=" << gi_->scene().gpu_bytes() + (field() ? field()->gpu_bytes() : 0)
+           << " warmup=" << (field() ? request.warmup_updates : 0);
   return ok_status();
 }
 
@@ -362,16 +348,16 @@ void Session::fill_info(v1::SessionInfo* info) const {
   info->Clear();
   info->set_session_id(id_);
   info->set_scene(scene_label_);
-  info->set_gi(field_ != nullptr);
+  info->set_gi(field() != nullptr);
   info->set_frames(frame_index_);
   info->set_command_seq(applying_seq_);
   for (const std::string& warning : warnings_) info->add_warnings(warning);
   to_proto(default_camera_, info->mutable_default_camera());
-  if (!gpu_scene_) return;
-  info->set_triangles(gpu_scene_->triangle_count());
-  info->set_gpu_bytes(gpu_scene_->gpu_bytes() + (field_ ? field_->gpu_bytes() : 0) +
-                      (shadow_field_ ? shadow_field_->gpu_bytes() : 0));
-  const auto& instances = gpu_scene_->scene().instances;
+  if (!gi_) return;
+  info->set_triangles(gi_->scene().triangle_count());
+  info->set_gpu_bytes(gi_->scene().gpu_bytes() + (field() ? field()->gpu_bytes() : 0) +
+                      (shadow_field() ? shadow_field()->gpu_bytes() : 0));
+  const auto& instances = gi_->scene().scene().instances;
   for (size_t i = 0; i < instances.size(); ++i) {
     auto* instance = info->add_instances();
     instance->set_index(static_cast<uint32_t>(i));
@@ -382,7 +368,7 @@ void Session::fill_info(v1::SessionInfo* info) const {
   for (const auto& [view_id, view] : views_) {
     if (!view.one_off) fill_view(view, info->add_views());
   }
-  if (field_) fill_field(info->mutable_field());
+  if (field()) fill_field(info->mutable_field());
 }
 
 // ---- Views --------------------------------------------------------------------------------------
@@ -403,7 +389,7 @@ Result<Session::ViewState*> Session::find_view(const std::string& view_id) {
 Result<Session::ViewState*> Session::add_view(ViewConfig config,
                                               const std::optional<v1::Camera>& camera,
                                               bool counts_against_limit) {
-  if (!gpu_scene_) return failed_precondition("session " + id_ + " has no scene loaded");
+  if (!gi_) return failed_precondition("session " + id_ + " has no scene loaded");
   if (counts_against_limit) {
     size_t count = 0;
     for (const auto& [id, view] : views_) count += view.one_off ? 0 : 1;
@@ -422,11 +408,6 @@ Result<Session::ViewState*> Session::add_view(ViewConfig config,
   if (camera) {
     DDGI_ASSIGN_OR_RETURN(view.camera, camera_from_proto(*camera, default_camera_));
   }
-  if (view.one_off && spare_renderer_) {
-    view.renderer = std::move(spare_renderer_);
-  } else {
-    DDGI_ASSIGN_OR_RETURN(view.renderer, make_renderer());
-  }
   if (!view.one_off) env_.metrics->views.fetch_add(1);
   const std::string id = view.id;
   return &views_.emplace(id, std::move(view)).first->second;
@@ -438,11 +419,7 @@ void Session::erase_view(const std::string& view_id) {
   ViewState& view = it->second;
   for (auto& stream : view.streams) stream->finish(grpc::Status::OK);
   for (auto& waiter : view.waiters) waiter(unavailable("view " + view_id + " was deleted"));
-  if (view.one_off) {
-    spare_renderer_ = std::move(view.renderer);  // kernels are costly to build: keep one
-  } else {
-    env_.metrics->views.fetch_sub(1);
-  }
+  if (!view.one_off) env_.metrics->views.fetch_sub(1);
   views_.erase(it);
 }
 
@@ -522,14 +499,14 @@ void Session::fill_light(const LightSlot& slot, v1::LightEntry* entry) const {
 Status Session::upload_lights() {
   std::vector<Light> lights;
   for (const LightSlot& slot : lights_) lights.push_back(slot.light);
-  return gpu_scene_->set_lights(lights);
+  return gi_->scene().set_lights(lights);
 }
 
 void Session::add_light(v1::Light light, v1::LightReply* reply, Completion done) {
   enqueue_sync(
       true,
       [this, light, reply]() -> Status {
-        if (!gpu_scene_) return failed_precondition("session " + id_ + " has no scene loaded");
+        if (!gi_) return failed_precondition("session " + id_ + " has no scene loaded");
         if (lights_.size() >= env_.limits->max_lights) {
           return resource_exhausted("session " + id_ + " already has " +
                                     std::to_string(lights_.size()) +
@@ -606,17 +583,17 @@ void Session::set_instance_transform(uint32_t index, glm::mat4 transform, v1::In
   enqueue_sync(
       true,
       [this, index, transform, reply]() -> Status {
-        if (!gpu_scene_) return failed_precondition("session " + id_ + " has no scene loaded");
-        const auto& instances = gpu_scene_->scene().instances;
+        if (!gi_) return failed_precondition("session " + id_ + " has no scene loaded");
+        const auto& instances = gi_->scene().scene().instances;
         if (index >= instances.size()) {
           return not_found("session " + id_ + " has no instance " + std::to_string(index) +
                            " (its scene has " + std::to_string(instances.size()) + " instances)");
         }
-        DDGI_TRY(gpu_scene_->set_instance_transform(index, transform));
+        DDGI_TRY(gi_->scene().set_instance_transform(index, transform));
         auto* instance = reply->mutable_instance();
         instance->set_index(index);
-        instance->set_name(gpu_scene_->scene().instances[index].name);
-        to_proto(gpu_scene_->scene().instances[index].transform, instance->mutable_transform());
+        instance->set_name(gi_->scene().scene().instances[index].name);
+        to_proto(gi_->scene().scene().instances[index].transform, instance->mutable_transform());
         reply->set_command_seq(applying_seq_);
         return ok_status();
       },
@@ -630,16 +607,16 @@ void Session::fill_field(v1::FieldParams* params) const {
   params->Clear();
   params->set_field(v1::FIELD_KIND_IRRADIANCE);
   for (const FieldParamInfo& info : field_param_infos()) {
-    auto value = get_field_param(field_->params(), info.name);
+    auto value = get_field_param(field()->params(), info.name);
     auto* p = params->add_params();
     p->set_name(info.name);
     p->set_value(value.ok() ? value.value() : "");
   }
-  params->set_probes(probe_count(field_->params()));
-  params->set_gpu_bytes(field_->gpu_bytes());
-  params->set_updates(field_->updates());
+  params->set_probes(probe_count(field()->params()));
+  params->set_gpu_bytes(field()->gpu_bytes());
+  params->set_updates(field()->updates());
   params->set_command_seq(applying_seq_);
-  const ProbeStateCounts counts = field_->probe_counts();
+  const ProbeStateCounts counts = field()->probe_counts();
   v1::ProbeStateCounts* states = params->mutable_probe_states();
   states->set_vigilant(counts.vigilant);
   states->set_awake(counts.awake);
@@ -651,24 +628,24 @@ void Session::fill_shadow_field(v1::FieldParams* params) const {
   params->Clear();
   params->set_field(v1::FIELD_KIND_SHADOW);
   for (const ShadowParamInfo& info : shadow_param_infos()) {
-    auto value = get_shadow_param(shadow_field_->params(), info.name);
+    auto value = get_shadow_param(shadow_field()->params(), info.name);
     auto* p = params->add_params();
     p->set_name(info.name);
     p->set_value(value.ok() ? value.value() : "");
   }
-  params->set_probes(probe_count(shadow_field_->params()));
-  params->set_gpu_bytes(shadow_field_->gpu_bytes());
-  params->set_updates(shadow_field_->updates());
+  params->set_probes(probe_count(shadow_field()->params()));
+  params->set_gpu_bytes(shadow_field()->gpu_bytes());
+  params->set_updates(shadow_field()->updates());
   params->set_command_seq(applying_seq_);
 }
 
 Status Session::require_field(v1::FieldKind kind) const {
-  if (kind == v1::FIELD_KIND_SHADOW && !shadow_field_) {
+  if (kind == v1::FIELD_KIND_SHADOW && !shadow_field()) {
     return failed_precondition("session " + id_ +
                                " has no shadow field (create it with direct_mode SHADOW_FIELD "
                                "or AMBIENT_OCCLUSION)");
   }
-  if (kind != v1::FIELD_KIND_SHADOW && !field_) {
+  if (kind != v1::FIELD_KIND_SHADOW && !field()) {
     return failed_precondition("session " + id_ +
                                " runs without GI (CreateSession gi=false): it has no field");
   }
@@ -697,14 +674,14 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
       [this, kind, assignments, reply]() -> Status {
         DDGI_TRY(require_field(kind));
         if (kind == v1::FIELD_KIND_SHADOW) {
-          ShadowFieldParams params = shadow_field_->params();
+          ShadowFieldParams params = shadow_field()->params();
           DDGI_TRY(apply_shadow_assignments(params, assignments));
-          DDGI_TRY(shadow_field_->set_params(params));
+          DDGI_TRY(shadow_field()->set_params(params));
           fill_shadow_field(reply);
         } else {
-          IrradianceFieldParams params = field_->params();
+          IrradianceFieldParams params = field()->params();
           DDGI_TRY(apply_field_assignments(params, assignments));
-          DDGI_TRY(field_->set_params(params));
+          DDGI_TRY(field()->set_params(params));
           fill_field(reply);
         }
         LOG_INFO << "field parameters changed session=" << id_
@@ -713,11 +690,6 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
         return ok_status();
       },
       std::move(done));
-}
-
-Result<std::unique_ptr<Renderer>> Session::make_renderer() {
-  return Renderer::create(*env_.context, *gpu_scene_, field_.get(), env_.context->default_backend(),
-                          shadow_field_.get());
 }
 
 // ---- Frames, queries, atlases
@@ -791,13 +763,13 @@ void Session::query(std::vector<IrradianceQuery> points, v1::QueryIrradianceRepl
   enqueue_sync(
       false,
       [this, shared_points, reply]() -> Status {
-        if (!field_) {
+        if (!field()) {
           return failed_precondition("session " + id_ +
                                      " runs without GI (CreateSession gi=false): it has no field");
         }
-        DDGI_ASSIGN_OR_RETURN(const std::vector<glm::vec3> values, field_->query(*shared_points));
+        DDGI_ASSIGN_OR_RETURN(const std::vector<glm::vec3> values, field()->query(*shared_points));
         for (const glm::vec3& value : values) to_proto(value, reply->add_irradiance());
-        reply->set_field_updates(field_->updates());
+        reply->set_field_updates(field()->updates());
         return ok_status();
       },
       std::move(done));
@@ -812,8 +784,8 @@ void Session::dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone d
           const bool shadow_kind =
               kind == v1::ATLAS_KIND_SHADOW || kind == v1::ATLAS_KIND_SHADOW_MOMENTS;
           DDGI_TRY(require_field(shadow_kind ? v1::FIELD_KIND_SHADOW : v1::FIELD_KIND_IRRADIANCE));
-          DDGI_ASSIGN_OR_RETURN(auto dump, read_atlas(*env_.context, field_.get(),
-                                                      shadow_field_.get(), kind, format));
+          DDGI_ASSIGN_OR_RETURN(auto dump,
+                                read_atlas(*env_.context, field(), shadow_field(), kind, format));
           DDGI_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, encode_atlas(dump.second, dump.first));
           return std::make_pair(std::move(dump.first), std::move(bytes));
         }();

@@ -18,9 +18,7 @@
 
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
-#include "gi/irradiance_field.h"
-#include "gi/shadow_field.h"
-#include "gpu_scene/gpu_scene.h"
+#include "gi/gi_stack.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "service/convert.h"
@@ -117,7 +115,7 @@ class Session : public std::enable_shared_from_this<Session> {
     std::string id;
     ViewConfig config;
     Camera camera;
-    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<FrameTarget> target;  // made at its first frame, remade when resized
     std::vector<std::shared_ptr<FrameStreamState>> streams;
     std::vector<FrameWaiter> waiters;
     bool owned_by_stream = false;  // deleted when its stream ends
@@ -150,7 +148,11 @@ class Session : public std::enable_shared_from_this<Session> {
   void fill_shadow_field(v1::FieldParams* params) const;
   // FAILED_PRECONDITION when the session lacks the field of `kind`.
   Status require_field(v1::FieldKind kind) const;
-  Result<std::unique_ptr<Renderer>> make_renderer();
+  // Renders `view` into its target (made or remade to size first), after the GI stack's update
+  // when `field_due`. The session's renderer is built at the first frame after a scene load.
+  Result<FrameResult> render_view(ViewState& view, const FrameSettings& settings, bool field_due);
+  IrradianceField* field() const { return gi_ ? gi_->field() : nullptr; }
+  ShadowField* shadow_field() const { return gi_ ? gi_->shadow_field() : nullptr; }
   void fill_light(const LightSlot& slot, v1::LightEntry* entry) const;
   void fail_view(ViewState& view, const Error& error);
   std::string new_view_id();
@@ -174,13 +176,11 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string scene_label_;
   std::vector<std::string> warnings_;
   Camera default_camera_;
-  std::unique_ptr<GpuScene> gpu_scene_;
-  std::unique_ptr<IrradianceField> field_;
-  std::unique_ptr<ShadowField> shadow_field_;
+  std::unique_ptr<GiStack> gi_;
+  std::unique_ptr<Renderer> renderer_;  // kernels built once per scene, shared by every view
   std::vector<LightSlot> lights_;
   uint32_t next_light_id_ = 0;
   std::map<std::string, ViewState> views_;
-  std::unique_ptr<Renderer> spare_renderer_;  // reused by one-off views
   uint64_t next_view_number_ = 1;
   uint64_t frame_index_ = 0;
   uint64_t applying_seq_ = 0;

@@ -11,11 +11,12 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "gi/field_param_table.h"
-#include "gi/irradiance_field.h"
+#include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/tool_support.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -37,16 +38,6 @@ every combination of --grids and --rays. Prints a markdown table (median millise
   --field NAME=VALUE    any other field parameter (repeatable)
   --device NAME         Vulkan device name filter
 )";
-
-// Passes of one field update (IrradianceField::record_update); the rest are frame passes.
-const std::string kFieldPasses[] = {"field trace", "field shade", "blend irradiance",
-                                    "blend distance", "borders"};
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
@@ -77,6 +68,78 @@ Result<IrradianceFieldParams> grid_for(const Scene& scene, const std::string& sp
   return p;
 }
 
+// What the flags ask for.
+struct BenchJob {
+  FrameSettings settings;
+  int64_t frames = 20;
+  int64_t warmup = 8;
+  uint32_t probes = 512;
+  std::vector<std::string> grids;
+  std::vector<uint32_t> ray_counts;
+  std::vector<std::string> field_assignments;
+};
+
+Result<BenchJob> parse_job(const Flags& flags) {
+  BenchJob job;
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 1920, 1, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 1080, 1, 16384));
+  job.settings.width = static_cast<uint32_t>(width);
+  job.settings.height = static_cast<uint32_t>(height);
+  DDGI_ASSIGN_OR_RETURN(job.frames, flags.get_int("frames", 20, 1, 10000));
+  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", 8, 0, 10000));
+  DDGI_ASSIGN_OR_RETURN(const int64_t probes, flags.get_int("probes", 512, 1, 4'194'304));
+  job.probes = static_cast<uint32_t>(probes);
+  DDGI_ASSIGN_OR_RETURN(const std::string grids_text, flags.get_string("grids", "auto"));
+  job.grids = split(grids_text, ';');
+  DDGI_ASSIGN_OR_RETURN(const std::string rays_text, flags.get_string("rays", "64,128,256"));
+  for (const std::string& r : split(rays_text, ',')) {
+    DDGI_ASSIGN_OR_RETURN(const int64_t n, parse_int(r, "--rays"));
+    job.ray_counts.push_back(static_cast<uint32_t>(n));
+  }
+  job.field_assignments = flags.get_all("field");
+  return job;
+}
+
+// One table row: a GI stack for the configuration, warmed up, then `frames` timed frames.
+Status bench_row(vk::Context& context, const BenchJob& job, const std::string& scene_path,
+                 const Scene& scene, const std::string& grid, uint32_t rays) {
+  DDGI_ASSIGN_OR_RETURN(
+      GiStackOptions options,
+      fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(options.field, grid_for(scene, grid, job.probes));
+  options.field.rays_per_probe = rays;
+  DDGI_TRY(apply_field_assignments(options.field, job.field_assignments));
+  DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
+  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
+                                                        context.default_backend()));
+  DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
+  tools::PassTable table;
+  for (int64_t f = 0; f < job.frames; ++f) {
+    DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(job.settings.direct_mode, {}));
+    DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, update));
+    table.add(frame.pass_times);
+  }
+  const double field_ms = table.group_median(vk::PassGroup::kIrradianceField);
+  const IrradianceField& field = *gi->field();
+  const IrradianceFieldParams& p = field.params();
+  const std::string name = scene_path.substr(scene_path.find_last_of('/') + 1);
+  const ProbeStateCounts counts = field.probe_counts();
+  std::printf(
+      "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %.1f | %.3f | %.3f | %.3f | %.3f | "
+      "%.3f | %.3f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f |\n",
+      name.c_str(), gi->scene().triangle_count(), p.counts.x, p.counts.y, p.counts.z,
+      static_cast<unsigned long long>(counts.active()),
+      static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
+      p.rays_per_probe, double(field.gpu_bytes()) / (1 << 20), table.pass_median("field trace"),
+      table.pass_median("field shade"), table.pass_median("blend irradiance"),
+      table.pass_median("blend distance"), table.pass_median("borders"), field_ms,
+      double(field.rays_per_update()) / (field_ms * 1e3), table.pass_median("primary"),
+      table.pass_median("direct"), table.pass_median("indirect"), table.pass_median("tonemap"),
+      table.others_median(vk::PassGroup::kIrradianceField));
+  std::fflush(stdout);
+  return ok_status();
+}
+
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
                                                   {"width", "height", "frames", "warmup", "grids",
@@ -87,85 +150,23 @@ Status run(int argc, char** argv) {
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
   }
   set_log_level(LogLevel::kWarning);
-  FrameSettings settings;
-  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 1920, 1, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 1080, 1, 16384));
-  settings.width = static_cast<uint32_t>(width);
-  settings.height = static_cast<uint32_t>(height);
-  DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 20, 1, 10000));
-  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 8, 0, 10000));
-  DDGI_ASSIGN_OR_RETURN(const int64_t probes, flags.get_int("probes", 512, 1, 4'194'304));
-  DDGI_ASSIGN_OR_RETURN(const std::string grids_text, flags.get_string("grids", "auto"));
-  DDGI_ASSIGN_OR_RETURN(const std::string rays_text, flags.get_string("rays", "64,128,256"));
-  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
-  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
-  std::vector<int64_t> ray_counts;
-  for (const std::string& r : split(rays_text, ',')) {
-    DDGI_ASSIGN_OR_RETURN(const int64_t n, parse_int(r, "--rays"));
-    ray_counts.push_back(n);
-  }
-
-  vk::ContextOptions options;
-  options.backend = forced_backend;
-  DDGI_ASSIGN_OR_RETURN(options.device_filter, flags.get_string("device", ""));
-  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
+  DDGI_ASSIGN_OR_RETURN(BenchJob job, parse_job(flags));
+  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
   std::printf("device: %s (%s), backend %s, %ux%u, %lld frames after %lld warm-up updates\n\n",
               context->caps().device_name.c_str(), context->caps().driver_name.c_str(),
-              vk::backend_name(context->default_backend()), settings.width, settings.height,
-              static_cast<long long>(frames), static_cast<long long>(warmup));
+              vk::backend_name(context->default_backend()), job.settings.width, job.settings.height,
+              static_cast<long long>(job.frames), static_cast<long long>(job.warmup));
   std::printf(
       "| scene | triangles | probes | traced / sleeping / off | rays/probe | field MiB | trace | "
       "shade | blend irr. | blend dist. | borders | field total | Mrays/s | primary | direct | "
       "indirect | tonemap | frame total |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
-    DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
-    settings.camera = default_camera(scene);
-    for (const std::string& grid : split(grids_text, ';')) {
-      for (int64_t rays : ray_counts) {
-        DDGI_ASSIGN_OR_RETURN(IrradianceFieldParams params,
-                              grid_for(scene, grid, static_cast<uint32_t>(probes)));
-        params.rays_per_probe = static_cast<uint32_t>(rays);
-        DDGI_TRY(apply_field_assignments(params, flags.get_all("field")));
-        DDGI_ASSIGN_OR_RETURN(auto field, IrradianceField::create(*context, *gpu_scene, params,
-                                                                  context->default_backend()));
-        DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(*context, *gpu_scene, field.get(),
-                                                              context->default_backend()));
-        DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), settings.direct_mode));
-        std::map<std::string, std::vector<double>> times;
-        std::vector<double> field_totals, frame_totals;
-        for (int64_t f = 0; f < frames; ++f) {
-          DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(settings));
-          double field_ms = 0.0, frame_ms = 0.0;
-          for (size_t p = 0; p < frame.pass_times.size(); ++p) {
-            times[frame.pass_times[p].name].push_back(frame.pass_times[p].milliseconds);
-            const bool field_pass = std::find(std::begin(kFieldPasses), std::end(kFieldPasses),
-                                              frame.pass_times[p].name) != std::end(kFieldPasses);
-            (field_pass ? field_ms : frame_ms) += frame.pass_times[p].milliseconds;
-          }
-          field_totals.push_back(field_ms);
-          frame_totals.push_back(frame_ms);
-        }
-        const double field_ms = median(field_totals);
-        const IrradianceFieldParams& p = field->params();
-        const std::string name = scene_path.substr(scene_path.find_last_of('/') + 1);
-        const ProbeStateCounts counts = field->probe_counts();
-        std::printf(
-            "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %.1f | %.3f | %.3f | %.3f | %.3f | "
-            "%.3f | %.3f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f |\n",
-            name.c_str(), gpu_scene->triangle_count(), p.counts.x, p.counts.y, p.counts.z,
-            static_cast<unsigned long long>(counts.active()),
-            static_cast<unsigned long long>(counts.sleeping),
-            static_cast<unsigned long long>(counts.off), p.rays_per_probe,
-            double(field->gpu_bytes()) / (1 << 20), median(times["field trace"]),
-            median(times["field shade"]), median(times["blend irradiance"]),
-            median(times["blend distance"]), median(times["borders"]), field_ms,
-            double(field->rays_per_update()) / (field_ms * 1e3), median(times["primary"]),
-            median(times["direct"]), median(times["indirect"]), median(times["tonemap"]),
-            median(frame_totals));
-        std::fflush(stdout);
+    job.settings.camera = default_camera(scene);
+    for (const std::string& grid : job.grids) {
+      for (uint32_t rays : job.ray_counts) {
+        DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays));
       }
     }
   }
@@ -176,10 +177,5 @@ Status run(int argc, char** argv) {
 }  // namespace ddgi
 
 int main(int argc, char** argv) {
-  const ddgi::Status status = ddgi::run(argc, argv);
-  if (!status.ok()) {
-    std::fprintf(stderr, "ddgi-bench: %s\n", status.error().message.c_str());
-    return 2;
-  }
-  return 0;
+  return ddgi::tools::tool_main("ddgi-bench", ddgi::run, argc, argv);
 }

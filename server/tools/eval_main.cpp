@@ -13,7 +13,7 @@
 #include "core/log.h"
 #include "encode/write_image.h"
 #include "gi/field_param_table.h"
-#include "gi/irradiance_field.h"
+#include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "metrics/flip.h"
@@ -22,6 +22,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/tool_support.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -114,12 +115,6 @@ Result<Scores> score(const std::vector<uint8_t>& reference, const std::vector<ui
   return s;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 Status write_exr(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
                  const std::vector<float>& rgba) {
   if (dir.empty()) return ok_status();
@@ -129,9 +124,122 @@ Status write_exr(const std::string& dir, const std::string& name, uint32_t width
   return encode::write_image(dir + "/" + name + ".exr", image);
 }
 
-std::string file_stem(const std::string& path) {
-  std::string name = path.substr(path.find_last_of('/') + 1);
-  return name.substr(0, name.find('.'));
+// What the flags ask for.
+struct EvalJob {
+  uint32_t width = 480, height = 270;
+  int64_t spp = 1024;
+  int64_t warmup = 64;
+  int64_t frames = 10;
+  std::vector<Config> configs;
+  std::vector<std::string> field_assignments;  // before every configuration's own
+  std::string out_dir;
+};
+
+Result<EvalJob> parse_job(const Flags& flags) {
+  EvalJob job;
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 480, 11, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 270, 11, 16384));
+  job.width = static_cast<uint32_t>(width);
+  job.height = static_cast<uint32_t>(height);
+  DDGI_ASSIGN_OR_RETURN(job.spp, flags.get_int("spp", 1024, 1, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", 64, 0, 100000));
+  DDGI_ASSIGN_OR_RETURN(job.frames, flags.get_int("frames", 10, 1, 10000));
+  DDGI_ASSIGN_OR_RETURN(const std::string configs_text, flags.get_string("configs", "default:"));
+  DDGI_ASSIGN_OR_RETURN(job.configs, parse_configs(configs_text));
+  DDGI_ASSIGN_OR_RETURN(job.out_dir, flags.get_string("out-dir", ""));
+  job.field_assignments = flags.get_all("field");
+  return job;
+}
+
+// The two references of a scene's default view, tone-mapped with one exposure (chosen from the
+// full one): the full image and its field part.
+struct References {
+  PathTraceSettings settings;
+  float exposure = 1.0f;
+  PathTraceImage full, indirect;
+};
+
+Result<References> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
+                                   const std::string& stem) {
+  References refs;
+  PathTraceSettings& pt = refs.settings;
+  pt.width = job.width;
+  pt.height = job.height;
+  pt.camera = default_camera(scene);
+  pt.jitter = false;  // the DDGI frame traces pixel centres too
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
+  DDGI_ASSIGN_OR_RETURN(auto tracer,
+                        PathTracer::create(context, *gpu_scene, context.default_backend()));
+  auto accumulate = [&](PathTraceView view) -> Status {
+    pt.view = view;
+    for (int64_t done = 0; done < job.spp;) {
+      const uint32_t batch = static_cast<uint32_t>(std::min<int64_t>(64, job.spp - done));
+      DDGI_TRY(tracer->accumulate(pt, batch));
+      done += batch;
+    }
+    return ok_status();
+  };
+  // The full reference first: it sets the exposure both references are tone-mapped with.
+  DDGI_TRY(accumulate(PathTraceView::kFull));
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
+  refs.exposure = auto_exposure(linear.radiance);
+  DDGI_ASSIGN_OR_RETURN(refs.full, tracer->read(Tonemap::kAces, refs.exposure));
+  DDGI_TRY(accumulate(PathTraceView::kFieldIndirect));
+  DDGI_ASSIGN_OR_RETURN(refs.indirect, tracer->read(Tonemap::kAces, refs.exposure));
+  DDGI_TRY(write_exr(job.out_dir, stem + ".reference", pt.width, pt.height, refs.full.radiance));
+  DDGI_TRY(write_exr(job.out_dir, stem + ".reference-indirect", pt.width, pt.height,
+                     refs.indirect.radiance));
+  return refs;
+}
+
+// One table row: a warmed-up field of `config`, `frames` timed full frames (one update each),
+// then the indirect view, both scored against the references.
+Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& scene,
+                       const std::string& stem, const References& refs, const Config& config) {
+  std::vector<std::string> assignments = job.field_assignments;
+  assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
+  DDGI_ASSIGN_OR_RETURN(const GiStackOptions options,
+                        fitted_gi_options(scene, true, DirectMode::kTracedShadows, assignments, {},
+                                          context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
+  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
+                                                        context.default_backend()));
+  DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
+  FrameSettings settings;
+  settings.width = job.width;
+  settings.height = job.height;
+  settings.camera = refs.settings.camera;
+  settings.exposure = refs.exposure;
+  auto frame = [&](View view) -> Result<FrameResult> {
+    settings.view = view;
+    DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(settings.direct_mode, {}));
+    return renderer->render(settings, update);
+  };
+  tools::PassTable table;
+  FrameResult full;
+  for (int64_t f = 0; f < job.frames; ++f) {
+    DDGI_ASSIGN_OR_RETURN(full, frame(View::kFull));
+    table.add(full.pass_times);
+  }
+  DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
+  DDGI_ASSIGN_OR_RETURN(const Scores s_full, score(refs.full.ldr, full.ldr, job.width, job.height));
+  DDGI_ASSIGN_OR_RETURN(const Scores s_ind,
+                        score(refs.indirect.ldr, indirect.ldr, job.width, job.height));
+  std::string tag = config.name;
+  std::replace(tag.begin(), tag.end(), ' ', '-');
+  DDGI_TRY(write_exr(job.out_dir, stem + "." + tag, job.width, job.height, full.radiance));
+  DDGI_TRY(write_exr(job.out_dir, stem + "." + tag + "-indirect", job.width, job.height,
+                     indirect.radiance));
+  const ProbeStateCounts c = gi->field()->probe_counts();
+  std::printf(
+      "| %s | %s | %llu / %llu / %llu | %.2f | %.4f | %.4f | %.2f | %.4f | %.4f | %.3f | %.3f |\n",
+      stem.c_str(), config.name.c_str(), static_cast<unsigned long long>(c.active()),
+      static_cast<unsigned long long>(c.sleeping), static_cast<unsigned long long>(c.off),
+      s_full.psnr, s_full.ssim, s_full.flip, s_ind.psnr, s_ind.ssim, s_ind.flip,
+      table.group_median(vk::PassGroup::kIrradianceField),
+      table.others_median(vk::PassGroup::kIrradianceField));
+  std::fflush(stdout);
+  return ok_status();
 }
 
 Status run(int argc, char** argv) {
@@ -144,109 +252,22 @@ Status run(int argc, char** argv) {
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
   }
   set_log_level(LogLevel::kWarning);
-  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 480, 11, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 270, 11, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t spp, flags.get_int("spp", 1024, 1, 1 << 20));
-  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 64, 0, 100000));
-  DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 10, 1, 10000));
-  DDGI_ASSIGN_OR_RETURN(const std::string configs_text, flags.get_string("configs", "default:"));
-  DDGI_ASSIGN_OR_RETURN(const std::vector<Config> configs, parse_configs(configs_text));
-  DDGI_ASSIGN_OR_RETURN(const std::string out_dir, flags.get_string("out-dir", ""));
-  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
-  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
-
-  vk::ContextOptions options;
-  options.backend = forced_backend;
-  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
-  const vk::TraceBackend backend = context->default_backend();
-  std::printf("device: %s, backend %s, %lldx%lld, reference %lld spp, %lld warm-up updates\n\n",
-              context->caps().device_name.c_str(), vk::backend_name(backend),
-              static_cast<long long>(width), static_cast<long long>(height),
-              static_cast<long long>(spp), static_cast<long long>(warmup));
+  DDGI_ASSIGN_OR_RETURN(const EvalJob job, parse_job(flags));
+  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
+  std::printf("device: %s, backend %s, %ux%u, reference %lld spp, %lld warm-up updates\n\n",
+              context->caps().device_name.c_str(), vk::backend_name(context->default_backend()),
+              job.width, job.height, static_cast<long long>(job.spp),
+              static_cast<long long>(job.warmup));
   std::printf(
       "| scene | configuration | probes traced / sleeping / off | full: PSNR | SSIM | FLIP | "
       "indirect: PSNR | SSIM | FLIP | field ms | frame ms |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|\n");
-
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
-    DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
-    const std::string stem = file_stem(scene_path);
-    PathTraceSettings pt;
-    pt.width = static_cast<uint32_t>(width);
-    pt.height = static_cast<uint32_t>(height);
-    pt.camera = default_camera(scene);
-    pt.jitter = false;  // the DDGI frame traces pixel centres too
-    DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(*context, *gpu_scene, backend));
-    // The full reference first: it sets the exposure both references are tone-mapped with.
-    auto accumulate = [&](PathTraceView view) -> Status {
-      pt.view = view;
-      for (int64_t done = 0; done < spp;) {
-        const uint32_t batch = static_cast<uint32_t>(std::min<int64_t>(64, spp - done));
-        DDGI_TRY(tracer->accumulate(pt, batch));
-        done += batch;
-      }
-      return ok_status();
-    };
-    PathTraceImage references[2];
-    DDGI_TRY(accumulate(PathTraceView::kFull));
-    DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
-    const float exposure = auto_exposure(linear.radiance);
-    DDGI_ASSIGN_OR_RETURN(references[0], tracer->read(Tonemap::kAces, exposure));
-    DDGI_TRY(accumulate(PathTraceView::kFieldIndirect));
-    DDGI_ASSIGN_OR_RETURN(references[1], tracer->read(Tonemap::kAces, exposure));
-    DDGI_TRY(write_exr(out_dir, stem + ".reference", pt.width, pt.height, references[0].radiance));
-    DDGI_TRY(write_exr(out_dir, stem + ".reference-indirect", pt.width, pt.height,
-                       references[1].radiance));
-
-    for (const Config& config : configs) {
-      IrradianceFieldParams params = default_field_params(scene);
-      DDGI_TRY(apply_field_assignments(params, flags.get_all("field")));
-      DDGI_TRY(apply_field_assignments(params, config.assignments));
-      DDGI_ASSIGN_OR_RETURN(auto field,
-                            IrradianceField::create(*context, *gpu_scene, params, backend));
-      DDGI_ASSIGN_OR_RETURN(auto renderer,
-                            Renderer::create(*context, *gpu_scene, field.get(), backend));
-      DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), DirectMode::kTracedShadows));
-      FrameSettings settings;
-      settings.width = pt.width;
-      settings.height = pt.height;
-      settings.camera = pt.camera;
-      settings.exposure = exposure;
-      std::vector<double> field_ms, frame_ms;
-      FrameResult full, indirect;
-      for (int64_t f = 0; f < frames; ++f) {
-        settings.view = View::kFull;
-        DDGI_ASSIGN_OR_RETURN(full, renderer->render(settings));
-        double field_total = 0.0, frame_total = 0.0;
-        for (const vk::PassTime& t : full.pass_times) {
-          const bool field_pass =
-              t.name.rfind("field", 0) == 0 || t.name.rfind("blend", 0) == 0 || t.name == "borders";
-          (field_pass ? field_total : frame_total) += t.milliseconds;
-        }
-        field_ms.push_back(field_total);
-        frame_ms.push_back(frame_total);
-      }
-      settings.view = View::kIndirect;
-      DDGI_ASSIGN_OR_RETURN(indirect, renderer->render(settings));
-      DDGI_ASSIGN_OR_RETURN(const Scores s_full,
-                            score(references[0].ldr, full.ldr, pt.width, pt.height));
-      DDGI_ASSIGN_OR_RETURN(const Scores s_ind,
-                            score(references[1].ldr, indirect.ldr, pt.width, pt.height));
-      std::string tag = config.name;
-      std::replace(tag.begin(), tag.end(), ' ', '-');
-      DDGI_TRY(write_exr(out_dir, stem + "." + tag, pt.width, pt.height, full.radiance));
-      DDGI_TRY(write_exr(out_dir, stem + "." + tag + "-indirect", pt.width, pt.height,
-                         indirect.radiance));
-      const ProbeStateCounts c = field->probe_counts();
-      std::printf(
-          "| %s | %s | %llu / %llu / %llu | %.2f | %.4f | %.4f | %.2f | %.4f | %.4f | %.3f | "
-          "%.3f |\n",
-          stem.c_str(), config.name.c_str(), static_cast<unsigned long long>(c.active()),
-          static_cast<unsigned long long>(c.sleeping), static_cast<unsigned long long>(c.off),
-          s_full.psnr, s_full.ssim, s_full.flip, s_ind.psnr, s_ind.ssim, s_ind.flip,
-          median(field_ms), median(frame_ms));
-      std::fflush(stdout);
+    const std::string stem = tools::file_stem(scene_path);
+    DDGI_ASSIGN_OR_RETURN(const References refs, make_references(*context, job, scene, stem));
+    for (const Config& config : job.configs) {
+      DDGI_TRY(evaluate_config(*context, job, scene, stem, refs, config));
     }
   }
   return ok_status();
@@ -256,10 +277,5 @@ Status run(int argc, char** argv) {
 }  // namespace ddgi
 
 int main(int argc, char** argv) {
-  const ddgi::Status status = ddgi::run(argc, argv);
-  if (!status.ok()) {
-    std::fprintf(stderr, "ddgi-eval: %s\n", status.error().message.c_str());
-    return 2;
-  }
-  return 0;
+  return ddgi::tools::tool_main("ddgi-eval", ddgi::run, argc, argv);
 }

@@ -8,13 +8,13 @@
 #include "core/log.h"
 #include "encode/write_image.h"
 #include "gi/field_param_table.h"
-#include "gi/irradiance_field.h"
+#include "gi/gi_stack.h"
 #include "gi/shadow_params_table.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
-#include "scene/gltf_loader.h"
 #include "tools/reference_render.h"
+#include "tools/tool_support.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -63,25 +63,87 @@ std::string default_scene_path() {
 #endif
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? 0.0 : values[values.size() / 2];
+// Everything the flags ask for.
+struct RenderJob {
+  std::string scene_path;
+  std::string out_path;
+  encode::ImageFormat format = encode::ImageFormat::kPng;
+  int64_t frames = 1;
+  int64_t quality = 90;
+  int64_t warmup = 128;
+  int64_t reference_spp = 0;  // > 0: the path-traced reference instead of frames
+  FrameSettings settings;
+  ReferenceOptions reference;
+  bool gi = true;
+  std::vector<std::string> field_assignments;
+  std::vector<std::string> shadow_assignments;
+  std::vector<double> camera_values;
+};
+
+Result<Flags> parse_flags(int argc, char** argv) {
+  return Flags::parse(
+      argc, argv,
+      {"out",       "width",        "height",       "camera",       "backend",   "view",
+       "direct",    "tonemap",      "exposure",     "jpeg-quality", "frames",    "device",
+       "log-level", "gi",           "warmup",       "field",        "reference", "max-bounces",
+       "seed",      "shadow-field", "light-samples"},
+      {"validation", "help"});
 }
 
-Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(
-      Flags flags,
-      Flags::parse(
-          argc, argv,
-          {"out",       "width",        "height",       "camera",       "backend",   "view",
-           "direct",    "tonemap",      "exposure",     "jpeg-quality", "frames",    "device",
-           "log-level", "gi",           "warmup",       "field",        "reference", "max-bounces",
-           "seed",      "shadow-field", "light-samples"},
-          {"validation", "help"}));
+// --help, --field help and --shadow-field help print their text; true when one did.
+bool printed_help(const Flags& flags) {
   if (flags.has("help")) {
     std::fputs(kUsage, stdout);
-    return ok_status();
+    return true;
   }
+  const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
+  if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
+    for (const ShadowParamInfo& info : shadow_param_infos()) {
+      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
+    }
+    return true;
+  }
+  const std::vector<std::string> field_assignments = flags.get_all("field");
+  if (!field_assignments.empty() && field_assignments.front() == "help") {
+    for (const FieldParamInfo& info : field_param_infos()) {
+      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
+    }
+    return true;
+  }
+  return false;
+}
+
+// The frame's own flags: size, view, direct light, tone mapping, camera, reference.
+Status parse_frame_flags(const Flags& flags, RenderJob& job) {
+  FrameSettings& settings = job.settings;
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 640, 1, 16384));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 480, 1, 16384));
+  settings.width = static_cast<uint32_t>(width);
+  settings.height = static_cast<uint32_t>(height);
+  DDGI_ASSIGN_OR_RETURN(const double exposure, flags.get_double("exposure", 1.0, 1e-9, 1e9));
+  settings.exposure = static_cast<float>(exposure);
+  DDGI_ASSIGN_OR_RETURN(const std::string view, flags.get_string("view", "full"));
+  DDGI_ASSIGN_OR_RETURN(job.reference_spp, flags.get_int("reference", 0, 0, 1 << 24));
+  if (job.reference_spp > 0) {
+    DDGI_ASSIGN_OR_RETURN(job.reference.settings.view, parse_path_trace_view(view));
+    DDGI_ASSIGN_OR_RETURN(const int64_t bounces, flags.get_int("max-bounces", 64, 0, 1024));
+    DDGI_ASSIGN_OR_RETURN(const int64_t seed, flags.get_int("seed", 0, 0, 4294967295));
+    job.reference.settings.max_bounces = static_cast<uint32_t>(bounces);
+    job.reference.settings.seed = static_cast<uint32_t>(seed);
+  } else {
+    DDGI_ASSIGN_OR_RETURN(settings.view, parse_view(view));
+  }
+  DDGI_ASSIGN_OR_RETURN(const std::string direct, flags.get_string("direct", "shadow-rays"));
+  DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
+  DDGI_ASSIGN_OR_RETURN(const int64_t light_samples, flags.get_int("light-samples", 1, 1, 64));
+  settings.light_samples = static_cast<uint32_t>(light_samples);
+  DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
+  DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
+  DDGI_ASSIGN_OR_RETURN(job.camera_values, flags.get_doubles("camera", 6, 7));
+  return ok_status();
+}
+
+Result<RenderJob> parse_job(const Flags& flags) {
   if (flags.positional().size() > 1) {
     return invalid_argument("expected at most one scene argument (see --help)");
   }
@@ -91,173 +153,136 @@ Status run(int argc, char** argv) {
     return invalid_argument("--log-level must be debug, info, warning, error or off");
   }
   set_log_level(level);
-
-  const std::string scene_path =
-      flags.positional().empty() ? default_scene_path() : flags.positional()[0];
-  DDGI_ASSIGN_OR_RETURN(const std::string out_path, flags.get_string("out", "frame.png"));
-  DDGI_ASSIGN_OR_RETURN(const encode::ImageFormat format, encode::format_from_path(out_path));
-  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
-  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
-  DDGI_ASSIGN_OR_RETURN(const int64_t frames, flags.get_int("frames", 1, 1, 10000));
-  DDGI_ASSIGN_OR_RETURN(const int64_t quality, flags.get_int("jpeg-quality", 90, 1, 100));
-
-  FrameSettings settings;
-  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 640, 1, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 480, 1, 16384));
-  settings.width = static_cast<uint32_t>(width);
-  settings.height = static_cast<uint32_t>(height);
-  DDGI_ASSIGN_OR_RETURN(const double exposure, flags.get_double("exposure", 1.0, 1e-9, 1e9));
-  settings.exposure = static_cast<float>(exposure);
-  DDGI_ASSIGN_OR_RETURN(const std::string view, flags.get_string("view", "full"));
-  DDGI_ASSIGN_OR_RETURN(const int64_t reference_spp, flags.get_int("reference", 0, 0, 1 << 24));
-  ReferenceOptions reference;
-  if (reference_spp > 0) {
-    DDGI_ASSIGN_OR_RETURN(reference.settings.view, parse_path_trace_view(view));
-    DDGI_ASSIGN_OR_RETURN(const int64_t bounces, flags.get_int("max-bounces", 64, 0, 1024));
-    DDGI_ASSIGN_OR_RETURN(const int64_t seed, flags.get_int("seed", 0, 0, 4294967295));
-    reference.settings.max_bounces = static_cast<uint32_t>(bounces);
-    reference.settings.seed = static_cast<uint32_t>(seed);
-  } else {
-    DDGI_ASSIGN_OR_RETURN(settings.view, parse_view(view));
-  }
-  DDGI_ASSIGN_OR_RETURN(const std::string direct, flags.get_string("direct", "shadow-rays"));
-  DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
-  DDGI_ASSIGN_OR_RETURN(const int64_t light_samples, flags.get_int("light-samples", 1, 1, 64));
-  settings.light_samples = static_cast<uint32_t>(light_samples);
-  const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
-  if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
-    for (const ShadowParamInfo& info : shadow_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
-    return ok_status();
-  }
-  DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
-  DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
-  DDGI_ASSIGN_OR_RETURN(const std::vector<double> camera_values, flags.get_doubles("camera", 6, 7));
-
+  RenderJob job;
+  job.scene_path = flags.positional().empty() ? default_scene_path() : flags.positional()[0];
+  DDGI_ASSIGN_OR_RETURN(job.out_path, flags.get_string("out", "frame.png"));
+  DDGI_ASSIGN_OR_RETURN(job.format, encode::format_from_path(job.out_path));
+  DDGI_ASSIGN_OR_RETURN(const std::string backend, flags.get_string("backend", "auto"));
+  DDGI_TRY(vk::parse_backend(backend));  // refused before the scene loads
+  DDGI_ASSIGN_OR_RETURN(job.frames, flags.get_int("frames", 1, 1, 10000));
+  DDGI_ASSIGN_OR_RETURN(job.quality, flags.get_int("jpeg-quality", 90, 1, 100));
+  DDGI_TRY(parse_frame_flags(flags, job));
   DDGI_ASSIGN_OR_RETURN(const std::string gi, flags.get_string("gi", "on"));
   if (gi != "on" && gi != "off") return invalid_argument("--gi must be on or off");
-  DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 128, 0, 100000));
-  const std::vector<std::string> field_assignments = flags.get_all("field");
-  if (!field_assignments.empty() && field_assignments.front() == "help") {
-    for (const FieldParamInfo& info : field_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
-    return ok_status();
-  }
+  job.gi = gi == "on";
+  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", 128, 0, 100000));
+  job.field_assignments = flags.get_all("field");
+  job.shadow_assignments = flags.get_all("shadow-field");
+  return job;
+}
 
-  DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
-  for (const std::string& warning : scene.warnings) LOG_WARNING << scene_path << ": " << warning;
-  IrradianceFieldParams field_params = default_field_params(scene);
-  DDGI_TRY(apply_field_assignments(field_params, field_assignments));
-  ShadowFieldParams shadow_params = fit_shadow_grid(scene.world_bounds());
-  DDGI_TRY(apply_shadow_assignments(shadow_params, shadow_assignments));
-  settings.camera = default_camera(scene);
-  if (!camera_values.empty()) {
-    DDGI_ASSIGN_OR_RETURN(settings.camera, camera_from_values(camera_values, settings.camera));
-  }
-
-  vk::ContextOptions options;
-  options.validation = flags.has("validation");
-  DDGI_ASSIGN_OR_RETURN(options.device_filter, flags.get_string("device", ""));
-  options.backend = forced_backend;
-  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
-  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
-  if (reference_spp > 0) {
-    reference.settings.width = settings.width;
-    reference.settings.height = settings.height;
-    reference.settings.camera = settings.camera;
-    reference.samples = static_cast<uint32_t>(reference_spp);
-    reference.out_path = out_path;
-    reference.jpeg_quality = static_cast<int>(quality);
-    reference.tonemap = settings.tonemap;
-    reference.exposure = settings.exposure;
-    return render_reference(*context, *gpu_scene, context->default_backend(), reference);
-  }
-  // The shadow field first: the irradiance field's probe rays read it in its modes. It exists
-  // when the frame reads it or the probe rays do (--field probe_direct=...).
-  const DirectMode shadow_mode =
-      shadow_field_mode(settings.direct_mode, gi == "on" ? &field_params : nullptr);
-  std::unique_ptr<ShadowField> shadow_field;
-  if (uses_shadow_field(shadow_mode)) {
-    DDGI_ASSIGN_OR_RETURN(shadow_field, ShadowField::create(*context, *gpu_scene, shadow_params,
-                                                            context->default_backend()));
-    const ShadowFieldParams& p = shadow_field->params();
-    LOG_INFO << "shadow field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
-             << " probes, " << p.rays_per_probe << " rays each, " << p.texels << "^2 texels, "
-             << shadow_field->kept_lights() << " of " << scene.lights.size() << " lights kept, "
-             << shadow_field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
-    const auto warm = shadow_field->update(static_cast<uint32_t>(warmup), shadow_mode);
-    if (!warm.ok()) return warm.error();
-  }
-  std::unique_ptr<IrradianceField> field;
-  if (gi == "on") {
-    DDGI_ASSIGN_OR_RETURN(field,
-                          IrradianceField::create(*context, *gpu_scene, field_params,
-                                                  context->default_backend(), shadow_field.get()));
-  }
-  DDGI_ASSIGN_OR_RETURN(
-      auto renderer, Renderer::create(*context, *gpu_scene, field.get(), context->default_backend(),
-                                      shadow_field.get()));
-  LOG_INFO << "scene " << scene_path << ": " << gpu_scene->triangle_count() << " triangles, "
-           << scene.lights.size() << " lights, " << gpu_scene->gpu_bytes() / (1 << 20)
-           << " MiB on the GPU";
-  if (field) {
-    const IrradianceFieldParams& p = field->params();
-    LOG_INFO << "irradiance field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
-             << " probes, " << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
-             << field->gpu_bytes() / 1024 << " KiB; " << warmup << " warm-up updates";
-    const ProbeStateCounts counts = field->probe_counts();
-    LOG_INFO << "probe states: " << counts.vigilant << " vigilant, " << counts.awake << " awake, "
-             << counts.sleeping << " sleeping, " << counts.off << " off";
-    DDGI_TRY(field->warm_up(static_cast<uint32_t>(warmup), settings.direct_mode));
-  }
-
-  FrameResult frame;
-  std::vector<std::vector<double>> pass_ms;
-  for (int64_t i = 0; i < frames; ++i) {
-    DDGI_ASSIGN_OR_RETURN(frame, renderer->render(settings));
-    pass_ms.resize(frame.pass_times.size());
-    for (size_t p = 0; p < frame.pass_times.size(); ++p) {
-      pass_ms[p].push_back(frame.pass_times[p].milliseconds);
-    }
-  }
-
-  if (format == encode::ImageFormat::kExr) {
+Status write_frame(const RenderJob& job, const FrameResult& frame) {
+  if (job.format == encode::ImageFormat::kExr) {
     encode::ImageRgbF hdr{frame.width, frame.height, {}};
     hdr.rgb.reserve(size_t(frame.width) * frame.height * 3);
     for (size_t i = 0; i < size_t(frame.width) * frame.height; ++i) {
       hdr.rgb.insert(hdr.rgb.end(), &frame.radiance[i * 4], &frame.radiance[i * 4 + 3]);
     }
-    DDGI_TRY(encode::write_image(out_path, hdr));
-  } else {
-    encode::WriteOptions write_options;
-    write_options.jpeg_quality = static_cast<int>(quality);
-    DDGI_TRY(encode::write_image(out_path, encode::ImageRgba8{frame.width, frame.height, frame.ldr},
-                                 write_options));
+    return encode::write_image(job.out_path, hdr);
   }
+  encode::WriteOptions write_options;
+  write_options.jpeg_quality = static_cast<int>(job.quality);
+  return encode::write_image(job.out_path, encode::ImageRgba8{frame.width, frame.height, frame.ldr},
+                             write_options);
+}
 
-  std::printf("%s: %ux%u, backend %s, device %s\n", out_path.c_str(), frame.width, frame.height,
-              vk::backend_name(renderer->backend()), context->caps().device_name.c_str());
-  std::printf("%-18s %12s\n", "pass", frames > 1 ? "median ms" : "ms");
-  double total = 0.0, field_ms = 0.0, shadow_ms = 0.0;
-  for (size_t p = 0; p < frame.pass_times.size(); ++p) {
-    const double ms = median(pass_ms[p]);
-    total += ms;
-    if (p < 5 && field) field_ms += ms;
-    if (frame.pass_times[p].name.rfind("shadow ", 0) == 0) shadow_ms += ms;
-    std::printf("%-18s %12.3f\n", frame.pass_times[p].name.c_str(), ms);
+void log_stack(const RenderJob& job, const Scene& scene, const GiStack& gi) {
+  LOG_INFO << "scene " << job.scene_path << ": " << gi.scene().triangle_count() << " triangles, "
+           << scene.lights.size() << " lights, " << gi.scene().gpu_bytes() / (1 << 20)
+           << " MiB on the GPU";
+  if (const ShadowField* shadow = gi.shadow_field()) {
+    const ShadowFieldParams& p = shadow->params();
+    LOG_INFO << "shadow field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
+             << " probes, " << p.rays_per_probe << " rays each, " << p.texels << "^2 texels, "
+             << shadow->kept_lights() << " of " << scene.lights.size() << " lights kept, "
+             << shadow->gpu_bytes() / 1024 << " KiB; " << job.warmup << " warm-up updates";
+  }
+  if (const IrradianceField* field = gi.field()) {
+    const IrradianceFieldParams& p = field->params();
+    LOG_INFO << "irradiance field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
+             << " probes, " << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
+             << field->gpu_bytes() / 1024 << " KiB; " << job.warmup << " warm-up updates";
+    const ProbeStateCounts counts = field->probe_counts();
+    LOG_INFO << "probe states: " << counts.vigilant << " vigilant, " << counts.awake << " awake, "
+             << counts.sleeping << " sleeping, " << counts.off << " off";
+  }
+}
+
+// The pass table and the update rates, each field's from its own group's passes only.
+void print_times(const RenderJob& job, const tools::PassTable& table, const GiStack& gi) {
+  std::printf("%-18s %12s\n", "pass", job.frames > 1 ? "median ms" : "ms");
+  double total = 0.0;
+  for (const tools::PassTable::Row& row : table.rows()) {
+    total += row.median_ms;
+    std::printf("%-18s %12.3f\n", row.name.c_str(), row.median_ms);
   }
   std::printf("%-18s %12.3f\n", "total", total);
-  if (field && field_ms > 0.0) {
+  const double field_ms = table.group_median(vk::PassGroup::kIrradianceField);
+  if (gi.field() && field_ms > 0.0) {
+    const uint64_t rays = gi.field()->rays_per_update();
     std::printf("field update: %.3f ms, %llu rays, %.1f Mrays/s\n", field_ms,
-                static_cast<unsigned long long>(field->rays_per_update()),
-                double(field->rays_per_update()) / (field_ms * 1e3));
+                static_cast<unsigned long long>(rays), double(rays) / (field_ms * 1e3));
   }
-  if (shadow_field && shadow_ms > 0.0) {
-    const uint64_t rays = shadow_field->rays_per_update(shadow_mode);
+  const double shadow_ms = table.group_median(vk::PassGroup::kShadowField);
+  if (gi.shadow_field() && shadow_ms > 0.0) {
+    const uint64_t rays =
+        gi.shadow_field()->rays_per_update(gi.shadow_update_mode(job.settings.direct_mode));
     std::printf("shadow field update: %.3f ms, %llu rays, %.1f Mrays/s\n", shadow_ms,
                 static_cast<unsigned long long>(rays), double(rays) / (shadow_ms * 1e3));
+  }
+}
+
+// Builds the GI stack, warms it up, renders the frames (one update each) and writes the last.
+Status render_frames(const RenderJob& job, vk::Context& context, const Scene& scene) {
+  DDGI_ASSIGN_OR_RETURN(
+      const GiStackOptions options,
+      fitted_gi_options(scene, job.gi, job.settings.direct_mode, job.field_assignments,
+                        job.shadow_assignments, context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
+  DDGI_ASSIGN_OR_RETURN(
+      auto renderer, Renderer::create(context, gi->scene(), gi->field(), context.default_backend(),
+                                      gi->shadow_field()));
+  log_stack(job, scene, *gi);
+  DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
+  FrameResult frame;
+  tools::PassTable table;
+  for (int64_t i = 0; i < job.frames; ++i) {
+    DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(job.settings.direct_mode, {}));
+    DDGI_ASSIGN_OR_RETURN(frame, renderer->render(job.settings, update));
+    table.add(frame.pass_times);
+  }
+  DDGI_TRY(write_frame(job, frame));
+  std::printf("%s: %ux%u, backend %s, device %s\n", job.out_path.c_str(), frame.width, frame.height,
+              vk::backend_name(renderer->backend()), context.caps().device_name.c_str());
+  print_times(job, table, *gi);
+  return ok_status();
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(const Flags flags, parse_flags(argc, argv));
+  if (printed_help(flags)) return ok_status();
+  DDGI_ASSIGN_OR_RETURN(RenderJob job, parse_job(flags));
+  DDGI_ASSIGN_OR_RETURN(const Scene scene, tools::load_scene_logged(job.scene_path));
+  job.settings.camera = default_camera(scene);
+  if (!job.camera_values.empty()) {
+    DDGI_ASSIGN_OR_RETURN(job.settings.camera,
+                          camera_from_values(job.camera_values, job.settings.camera));
+  }
+  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
+  if (job.reference_spp > 0) {
+    ReferenceOptions& reference = job.reference;
+    reference.settings.width = job.settings.width;
+    reference.settings.height = job.settings.height;
+    reference.settings.camera = job.settings.camera;
+    reference.samples = static_cast<uint32_t>(job.reference_spp);
+    reference.out_path = job.out_path;
+    reference.jpeg_quality = static_cast<int>(job.quality);
+    reference.tonemap = job.settings.tonemap;
+    reference.exposure = job.settings.exposure;
+    DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(*context, scene));
+    DDGI_TRY(render_reference(*context, *gpu_scene, context->default_backend(), reference));
+  } else {
+    DDGI_TRY(render_frames(job, *context, scene));
   }
   if (context->validation_message_count() > 0) {
     return internal_error(std::to_string(context->validation_message_count()) +
@@ -270,10 +295,5 @@ Status run(int argc, char** argv) {
 }  // namespace ddgi
 
 int main(int argc, char** argv) {
-  const ddgi::Status status = ddgi::run(argc, argv);
-  if (!status.ok()) {
-    std::fprintf(stderr, "ddgi-render: %s\n", status.error().message.c_str());
-    return status.error().code == ddgi::ErrorCode::kInvalidArgument ? 2 : 1;
-  }
-  return 0;
+  return ddgi::tools::tool_main("ddgi-render", ddgi::run, argc, argv);
 }

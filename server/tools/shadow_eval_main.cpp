@@ -13,7 +13,7 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
-#include "gi/irradiance_field.h"
+#include "gi/gi_stack.h"
 #include "gi/shadow_field.h"
 #include "gi/shadow_params_table.h"
 #include "gpu_scene/camera_fit.h"
@@ -25,6 +25,7 @@
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tools/shadow_plot.h"
+#include "tools/tool_support.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -141,21 +142,6 @@ float reference_exposure(const std::vector<float>& radiance) {
   return high > 0.0f ? std::clamp(0.8f / high, 1e-6f, 1e6f) : 1.0f;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-bool is_shadow_pass(const std::string& name) {
-  return name.rfind("shadow ", 0) == 0;
-}
-
-std::string file_stem(const std::string& path) {
-  std::string name = path.substr(path.find_last_of('/') + 1);
-  return name.substr(0, name.find('.'));
-}
-
 Status write_png(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
                  const std::vector<uint8_t>& rgba) {
   if (dir.empty()) return ok_status();
@@ -214,21 +200,25 @@ Result<SceneArg> parse_scene_arg(const std::string& text) {
   return SceneArg{text.substr(0, at), region};
 }
 
-Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& o,
-                      std::vector<PassRow>& pass_rows, ScatterPlot& plot) {
-  const vk::TraceBackend backend = context.default_backend();
-  const std::string& scene_path = arg.path;
-  DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
-  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
-  const std::string stem = file_stem(scene_path);
+// The path-traced references of a scene's default view: the full image first, which sets the
+// exposure of both, then the punctual direct light that the direct modes approximate.
+struct References {
+  PathTraceSettings settings;
+  float exposure = 1.0f;
+  PathTraceImage full, direct;
+};
 
-  // References: the full image first, which sets the exposure of both.
-  PathTraceSettings pt;
+Result<References> make_references(vk::Context& context, const Scene& scene, const Options& o,
+                                   const std::string& stem) {
+  References refs;
+  PathTraceSettings& pt = refs.settings;
   pt.width = o.width;
   pt.height = o.height;
   pt.camera = default_camera(scene);
   pt.jitter = false;  // frames trace pixel centres too
-  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu_scene, backend));
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
+  DDGI_ASSIGN_OR_RETURN(auto tracer,
+                        PathTracer::create(context, *gpu_scene, context.default_backend()));
   auto accumulate = [&](PathTraceView view, uint32_t spp) -> Status {
     pt.view = view;
     for (uint32_t done = 0; done < spp;) {
@@ -240,17 +230,20 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
   };
   DDGI_TRY(accumulate(PathTraceView::kFull, o.full_spp));
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
-  const float exposure = reference_exposure(linear.radiance);
-  DDGI_ASSIGN_OR_RETURN(const PathTraceImage full_reference,
-                        tracer->read(Tonemap::kAces, exposure));
+  refs.exposure = reference_exposure(linear.radiance);
+  DDGI_ASSIGN_OR_RETURN(refs.full, tracer->read(Tonemap::kAces, refs.exposure));
   DDGI_TRY(accumulate(PathTraceView::kPunctualDirect, o.spp));
-  DDGI_ASSIGN_OR_RETURN(const PathTraceImage direct_reference,
-                        tracer->read(Tonemap::kAces, exposure));
-  tracer.reset();
-  DDGI_TRY(write_png(o.out_dir, stem + ".reference", o.width, o.height, full_reference.ldr));
-  DDGI_TRY(
-      write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, direct_reference.ldr));
+  DDGI_ASSIGN_OR_RETURN(refs.direct, tracer->read(Tonemap::kAces, refs.exposure));
+  DDGI_TRY(write_png(o.out_dir, stem + ".reference", o.width, o.height, refs.full.ldr));
+  DDGI_TRY(write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, refs.direct.ldr));
+  return refs;
+}
 
+// The modes compared: traced shadows, unshadowed, the shadow field at every resolution (the
+// first also split), and the AO mode on the second resolution: the lights as in shadow-field,
+// plus one AO ray per surfel. With GI the sky arrives through the irradiance field, so AO adds
+// only cost there; without (--gi off) it adds the sky term.
+Result<std::vector<ModeRun>> mode_runs(const Scene& scene, const SceneArg& arg, const Options& o) {
   std::vector<ModeRun> runs = {{"shadow-rays", DirectMode::kTracedShadows, false, {}},
                                {"unshadowed", DirectMode::kUnshadowed, false, {}}};
   auto shadow_params = [&](const Resolution& resolution) -> Result<ShadowFieldParams> {
@@ -268,114 +261,133 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
       runs.push_back({"shadow-field split", DirectMode::kShadowField, true, p});
     }
   }
-  // The AO mode on the second resolution: the lights as in shadow-field, plus one AO ray per
-  // surfel. With GI the sky arrives through the irradiance field, so AO adds only cost there;
-  // without (--gi off) it adds the sky term.
   DDGI_ASSIGN_OR_RETURN(
       const ShadowFieldParams ao,
       shadow_params(o.resolutions[std::min<size_t>(1, o.resolutions.size() - 1)]));
   runs.push_back({"ao", DirectMode::kAmbientOcclusion, true, ao});
+  return runs;
+}
 
-  // Every mode's field and renderer first, then their frames in turn: a GPU's clocks follow its
-  // load, and timing one mode after another made whichever came after a pause (a pipeline
-  // compile, a warm-up) up to 2.5x slower on the H100. Taking turns gives every mode the same
-  // conditions.
-  struct Live {
-    std::unique_ptr<IrradianceField> field;  // its probe rays are lit in the mode too
-    std::unique_ptr<ShadowField> shadow;
-    std::unique_ptr<Renderer> renderer;
-    std::vector<double> direct_ms, frame_ms;
-    std::map<std::string, std::vector<double>> shadow_passes;
-    FrameResult full;
-  };
-  std::vector<Live> live(runs.size());
-  for (size_t m = 0; m < runs.size(); ++m) {
-    if (runs[m].has_shadow_field) {
-      DDGI_ASSIGN_OR_RETURN(live[m].shadow,
-                            ShadowField::create(context, *gpu_scene, runs[m].shadow, backend));
-      const auto warm = live[m].shadow->update(o.warmup, runs[m].mode);
-      if (!warm.ok()) return warm.error();
-    }
-    if (o.gi) {
-      DDGI_ASSIGN_OR_RETURN(
-          live[m].field, IrradianceField::create(context, *gpu_scene, default_field_params(scene),
-                                                 backend, live[m].shadow.get()));
-      const auto warm = live[m].field->update(o.warmup, runs[m].mode);
-      if (!warm.ok()) return warm.error();
-    }
-    DDGI_ASSIGN_OR_RETURN(
-        live[m].renderer,
-        Renderer::create(context, *gpu_scene, live[m].field.get(), backend, live[m].shadow.get()));
-  }
-  FrameSettings settings;
-  settings.width = o.width;
-  settings.height = o.height;
-  settings.camera = pt.camera;
-  settings.exposure = exposure;
-  settings.light_samples = o.light_samples;
+// One mode's GI stack (its irradiance field's probe rays are lit in the mode too), renderer and
+// measurements.
+struct Live {
+  std::unique_ptr<GiStack> gi;
+  std::unique_ptr<Renderer> renderer;
+  std::vector<double> direct_ms, frame_ms;
+  std::map<std::string, std::vector<double>> shadow_passes;
+  FrameResult full;
+};
+
+Result<Live> make_live(vk::Context& context, const Scene& scene, const Options& o,
+                       const ModeRun& run) {
+  Live live;
+  GiStackOptions options;
+  options.gi = o.gi;
+  options.direct_mode = run.mode;
+  options.field = default_field_params(scene);
+  options.shadow = run.shadow;
+  options.backend = context.default_backend();
+  DDGI_ASSIGN_OR_RETURN(live.gi, GiStack::create(context, scene, options));
+  DDGI_TRY(live.gi->update(o.warmup));
+  DDGI_ASSIGN_OR_RETURN(live.renderer, Renderer::create(context, live.gi->scene(), live.gi->field(),
+                                                        options.backend, live.gi->shadow_field()));
+  return live;
+}
+
+// Every mode's frames in turn, `frames` untimed rounds first (drivers may compile pipelines at
+// their first dispatch): a GPU's clocks follow its load, and timing one mode after another made
+// whichever came after a pause (a pipeline compile, a warm-up) up to 2.5x slower on the H100.
+// Taking turns gives every mode the same conditions.
+Status time_modes(const std::vector<ModeRun>& runs, std::vector<Live>& live, const Options& o,
+                  FrameSettings settings) {
   settings.view = View::kFull;
-  // As many untimed rounds first: drivers may compile pipelines at their first dispatch.
   for (uint32_t f = 0; f < 2 * o.frames; ++f) {
     const bool timed = f >= o.frames;
     for (size_t m = 0; m < runs.size(); ++m) {
       settings.direct_mode = runs[m].mode;
-      DDGI_ASSIGN_OR_RETURN(live[m].full, live[m].renderer->render(settings));
+      DDGI_ASSIGN_OR_RETURN(const auto update, live[m].gi->frame_update(runs[m].mode, {}));
+      DDGI_ASSIGN_OR_RETURN(live[m].full, live[m].renderer->render(settings, update));
       if (!timed) continue;
       double direct_total = 0.0, frame_total = 0.0;
       for (const vk::PassTime& t : live[m].full.pass_times) {
         frame_total += t.milliseconds;
-        if (t.name == "direct" || is_shadow_pass(t.name)) direct_total += t.milliseconds;
-        if (is_shadow_pass(t.name)) live[m].shadow_passes[t.name].push_back(t.milliseconds);
+        const bool shadow_pass = t.group == vk::PassGroup::kShadowField;
+        if (t.name == "direct" || shadow_pass) direct_total += t.milliseconds;
+        if (shadow_pass) live[m].shadow_passes[t.name].push_back(t.milliseconds);
       }
       live[m].direct_ms.push_back(direct_total);
       live[m].frame_ms.push_back(frame_total);
     }
   }
+  return ok_status();
+}
 
+// A mode's table row, pass-table row and plot point.
+Status report_mode(const ModeRun& run, Live& l, const References& refs, const Options& o,
+                   const std::string& stem, FrameSettings settings, std::vector<PassRow>& pass_rows,
+                   PlotSeries& series) {
+  settings.direct_mode = run.mode;
+  settings.view = View::kDirect;
+  DDGI_ASSIGN_OR_RETURN(const auto update, l.gi->frame_update(run.mode, {}));
+  DDGI_ASSIGN_OR_RETURN(const FrameResult direct, l.renderer->render(settings, update));
+  DDGI_ASSIGN_OR_RETURN(const Scores d, score(refs.direct.ldr, direct.ldr, o.width, o.height));
+  DDGI_ASSIGN_OR_RETURN(const Scores f, score(refs.full.ldr, l.full.ldr, o.width, o.height));
+  std::string grid = "-", label = run.name == "shadow-rays" ? "rays" : "none";
+  if (run.has_shadow_field) {
+    const glm::ivec3 c = run.shadow.counts;
+    const std::string counts =
+        std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z);
+    grid = counts + ", " + std::to_string(run.shadow.texels) + "^2";
+    const bool ao_mode = run.mode == DirectMode::kAmbientOcclusion;
+    const std::string kind = run.shadow.split_update ? "split" : ao_mode ? "ao" : "";
+    label = (kind.empty() ? "" : kind + " ") + counts + "/" + std::to_string(run.shadow.texels);
+    PassRow row{stem,
+                grid + (kind.empty() ? "" : ", " + kind),
+                l.gi->shadow_field()->rays_per_update(run.mode),
+                {}};
+    for (auto& [name, values] : l.shadow_passes) row.ms[name] = tools::median(values);
+    pass_rows.push_back(row);
+  }
+  std::string tag = run.name + (run.has_shadow_field ? "-" + std::to_string(run.shadow.counts.x) +
+                                                           "x" + std::to_string(run.shadow.texels)
+                                                     : "");
+  std::replace(tag.begin(), tag.end(), ' ', '-');
+  DDGI_TRY(write_png(o.out_dir, stem + "." + tag, o.width, o.height, l.full.ldr));
+  DDGI_TRY(write_png(o.out_dir, stem + "." + tag + "-direct", o.width, o.height, direct.ldr));
+  const ShadowField* shadow = l.gi->shadow_field();
+  const double shadow_mib = shadow ? double(shadow->gpu_bytes()) / (1 << 20) : 0.0;
+  const double direct_ms = tools::median(l.direct_ms);
+  std::printf("| %s | %s | %s | %.1f | %s | %.4f | %.4f | %s | %.4f | %.4f | %.3f | %.3f |\n",
+              stem.c_str(), run.name.c_str(), grid.c_str(), shadow_mib, fixed(d.psnr, 2).c_str(),
+              d.ssim, d.flip, fixed(f.psnr, 2).c_str(), f.ssim, f.flip, direct_ms,
+              tools::median(l.frame_ms));
+  std::fflush(stdout);
+  series.points.push_back({direct_ms, d.flip, label});
+  return ok_status();
+}
+
+Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& o,
+                      std::vector<PassRow>& pass_rows, ScatterPlot& plot) {
+  DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(arg.path));
+  const std::string stem = tools::file_stem(arg.path);
+  DDGI_ASSIGN_OR_RETURN(const References refs, make_references(context, scene, o, stem));
+  DDGI_ASSIGN_OR_RETURN(const std::vector<ModeRun> runs, mode_runs(scene, arg, o));
+  // Every mode's stack and renderer first, then their frames in turn (time_modes).
+  std::vector<Live> live;
+  for (const ModeRun& run : runs) {
+    DDGI_ASSIGN_OR_RETURN(Live l, make_live(context, scene, o, run));
+    live.push_back(std::move(l));
+  }
+  FrameSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.camera = refs.settings.camera;
+  settings.exposure = refs.exposure;
+  settings.light_samples = o.light_samples;
+  DDGI_TRY(time_modes(runs, live, o, settings));
   PlotSeries series{stem, {}};
   for (size_t m = 0; m < runs.size(); ++m) {
-    const ModeRun& run = runs[m];
-    Live& l = live[m];
-    settings.direct_mode = run.mode;
-    settings.view = View::kDirect;
-    DDGI_ASSIGN_OR_RETURN(const FrameResult direct, l.renderer->render(settings));
-    DDGI_ASSIGN_OR_RETURN(const Scores d,
-                          score(direct_reference.ldr, direct.ldr, o.width, o.height));
-    DDGI_ASSIGN_OR_RETURN(const Scores f, score(full_reference.ldr, l.full.ldr, o.width, o.height));
-    std::string grid = "-", label = run.name == "shadow-rays" ? "rays" : "none";
-    if (run.has_shadow_field) {
-      const glm::ivec3 c = run.shadow.counts;
-      const std::string counts =
-          std::to_string(c.x) + "x" + std::to_string(c.y) + "x" + std::to_string(c.z);
-      grid = counts + ", " + std::to_string(run.shadow.texels) + "^2";
-      const bool ao_mode = run.mode == DirectMode::kAmbientOcclusion;
-      label = std::string(run.shadow.split_update ? "split "
-                          : ao_mode               ? "ao "
-                                                  : "") +
-              counts + "/" + std::to_string(run.shadow.texels);
-      PassRow row{stem,
-                  grid + (run.shadow.split_update ? ", split"
-                          : ao_mode               ? ", ao"
-                                                  : ""),
-                  l.shadow->rays_per_update(run.mode),
-                  {}};
-      for (auto& [name, values] : l.shadow_passes) row.ms[name] = median(values);
-      pass_rows.push_back(row);
-    }
-    std::string tag = run.name + (run.has_shadow_field ? "-" + std::to_string(run.shadow.counts.x) +
-                                                             "x" + std::to_string(run.shadow.texels)
-                                                       : "");
-    std::replace(tag.begin(), tag.end(), ' ', '-');
-    DDGI_TRY(write_png(o.out_dir, stem + "." + tag, o.width, o.height, l.full.ldr));
-    DDGI_TRY(write_png(o.out_dir, stem + "." + tag + "-direct", o.width, o.height, direct.ldr));
-
-    const double shadow_mib = l.shadow ? double(l.shadow->gpu_bytes()) / (1 << 20) : 0.0;
-    std::printf("| %s | %s | %s | %.1f | %s | %.4f | %.4f | %s | %.4f | %.4f | %.3f | %.3f |\n",
-                stem.c_str(), run.name.c_str(), grid.c_str(), shadow_mib, fixed(d.psnr, 2).c_str(),
-                d.ssim, d.flip, fixed(f.psnr, 2).c_str(), f.ssim, f.flip, median(l.direct_ms),
-                median(l.frame_ms));
-    std::fflush(stdout);
-    series.points.push_back({median(l.direct_ms), d.flip, label});
+    DDGI_TRY(report_mode(runs[m], live[m], refs, o, stem, settings, pass_rows, series));
   }
   plot.series.push_back(series);
   return ok_status();
@@ -438,15 +450,10 @@ Status run(int argc, char** argv) {
   o.shadow_assignments = flags.get_all("shadow-field");
   DDGI_ASSIGN_OR_RETURN(o.out_dir, flags.get_string("out-dir", ""));
   DDGI_ASSIGN_OR_RETURN(const std::string svg_path, flags.get_string("svg", ""));
-  DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
-  DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
   // Fail on a bad assignment before any GPU work.
   ShadowFieldParams check;
   DDGI_TRY(apply_shadow_assignments(check, o.shadow_assignments));
-
-  vk::ContextOptions options;
-  options.backend = forced_backend;
-  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(options));
+  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
   std::printf(
       "device: %s (%s), backend %s, %ux%u, references %u spp (direct) and %u spp (full), %u "
       "warm-up updates, %u frames, GI %s\n\n",
@@ -475,10 +482,5 @@ Status run(int argc, char** argv) {
 }  // namespace ddgi
 
 int main(int argc, char** argv) {
-  const ddgi::Status status = ddgi::run(argc, argv);
-  if (!status.ok()) {
-    std::fprintf(stderr, "ddgi-shadow-eval: %s\n", status.error().message.c_str());
-    return 2;
-  }
-  return 0;
+  return ddgi::tools::tool_main("ddgi-shadow-eval", ddgi::run, argc, argv);
 }

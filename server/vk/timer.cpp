@@ -24,7 +24,7 @@ GpuTimer& GpuTimer::operator=(GpuTimer&& other) noexcept {
     context_ = std::exchange(other.context_, nullptr);
     pool_ = std::exchange(other.pool_, VK_NULL_HANDLE);
     capacity_ = other.capacity_;
-    names_ = std::move(other.names_);
+    passes_ = std::move(other.passes_);
     open_ = other.open_;
   }
   return *this;
@@ -38,26 +38,26 @@ void GpuTimer::reset() {
   }
   context_ = nullptr;
   pool_ = VK_NULL_HANDLE;
-  names_.clear();
+  passes_.clear();
 }
 
 void GpuTimer::begin_frame(VkCommandBuffer cmd) {
-  names_.clear();
+  passes_.clear();
   open_ = false;
   if (pool_) vkCmdResetQueryPool(cmd, pool_, 0, capacity_ * 2);
 }
 
-void GpuTimer::begin_pass(VkCommandBuffer cmd, const std::string& name) {
+void GpuTimer::begin_pass(VkCommandBuffer cmd, const std::string& name, PassGroup group) {
   if (context_ && context_->fn().vkCmdBeginDebugUtilsLabelEXT) {
     VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
     label.pLabelName = name.c_str();
     context_->fn().vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
   }
   open_ = true;
-  if (!pool_ || names_.size() >= capacity_) return;
+  if (!pool_ || passes_.size() >= capacity_) return;
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_,
-                      static_cast<uint32_t>(names_.size()) * 2);
-  names_.push_back(name);
+                      static_cast<uint32_t>(passes_.size()) * 2);
+  passes_.emplace_back(name, group);
 }
 
 void GpuTimer::end_pass(VkCommandBuffer cmd) {
@@ -66,26 +66,48 @@ void GpuTimer::end_pass(VkCommandBuffer cmd) {
   if (context_ && context_->fn().vkCmdEndDebugUtilsLabelEXT) {
     context_->fn().vkCmdEndDebugUtilsLabelEXT(cmd);
   }
-  if (!pool_ || names_.empty() || names_.size() > capacity_) return;
+  if (!pool_ || passes_.empty() || passes_.size() > capacity_) return;
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_,
-                      static_cast<uint32_t>(names_.size()) * 2 - 1);
+                      static_cast<uint32_t>(passes_.size()) * 2 - 1);
 }
 
 Result<std::vector<PassTime>> GpuTimer::read() {
   std::vector<PassTime> times;
-  if (!pool_ || names_.empty()) return times;
-  std::vector<uint64_t> ticks(names_.size() * 2);
+  if (!pool_ || passes_.empty()) return times;
+  std::vector<uint64_t> ticks(passes_.size() * 2);
   VK_TRY(vkGetQueryPoolResults(context_->device(), pool_, 0, static_cast<uint32_t>(ticks.size()),
                                ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   const double ns_per_tick = context_->caps().timestamp_period_ns;
-  for (size_t i = 0; i < names_.size(); ++i) {
+  for (size_t i = 0; i < passes_.size(); ++i) {
     const uint64_t begin = ticks[2 * i];
     const uint64_t end = ticks[2 * i + 1];
     const double ms = end >= begin ? double(end - begin) * ns_per_tick * 1e-6 : 0.0;
-    times.push_back({names_[i], ms});
+    times.push_back({passes_[i].first, ms, passes_[i].second});
   }
   return times;
+}
+
+const char* pass_group_name(PassGroup group) {
+  switch (group) {
+    case PassGroup::kShadowField:
+      return "shadow field";
+    case PassGroup::kIrradianceField:
+      return "irradiance field";
+    case PassGroup::kFrame:
+      return "frame";
+    case PassGroup::kReadback:
+      return "readback";
+  }
+  return "?";
+}
+
+double group_milliseconds(const std::vector<PassTime>& times, PassGroup group) {
+  double sum = 0.0;
+  for (const PassTime& t : times) {
+    if (t.group == group) sum += t.milliseconds;
+  }
+  return sum;
 }
 
 }  // namespace ddgi::vk

@@ -1,4 +1,5 @@
-// GPU timestamps around named passes of one submission.
+// GPU timestamps around named passes of one submission. Each pass carries the group it was
+// declared in (vk::Pass::group), so totals per group never depend on names or positions.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -11,10 +12,24 @@
 
 namespace ddgi::vk {
 
+// What a pass's time counts towards. Tools and the service sum pass times by group: the field
+// update's ms (and its Mrays/s) must not include the shadow field's passes, and so on.
+enum class PassGroup : uint8_t {
+  kShadowField,      // shadow-field update
+  kIrradianceField,  // irradiance-field update
+  kFrame,            // the frame's own passes (primary, direct, indirect, views, tone mapping)
+  kReadback,         // copies of results to host-visible memory
+};
+// "shadow field", "irradiance field", "frame", "readback".
+const char* pass_group_name(PassGroup group);
+
 struct PassTime {
   std::string name;
   double milliseconds = 0.0;
+  PassGroup group = PassGroup::kFrame;
 };
+// The summed milliseconds of the passes of `group`.
+double group_milliseconds(const std::vector<PassTime>& times, PassGroup group);
 
 class GpuTimer {
  public:
@@ -29,7 +44,7 @@ class GpuTimer {
 
   // Call at the start of recording; clears the previous submission's passes.
   void begin_frame(VkCommandBuffer cmd);
-  void begin_pass(VkCommandBuffer cmd, const std::string& name);
+  void begin_pass(VkCommandBuffer cmd, const std::string& name, PassGroup group);
   void end_pass(VkCommandBuffer cmd);
   // After the submission completed: the measured passes, in recording order. Empty when the
   // device has no timestamps.
@@ -39,7 +54,7 @@ class GpuTimer {
   Context* context_ = nullptr;
   VkQueryPool pool_ = VK_NULL_HANDLE;
   uint32_t capacity_ = 0;
-  std::vector<std::string> names_;
+  std::vector<std::pair<std::string, PassGroup>> passes_;
   bool open_ = false;
 };
 

@@ -8,6 +8,7 @@
 #include "gpu_scene/gpu_scene.h"
 #include "render/path_tracer.h"
 #include "render/renderer.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 
@@ -32,7 +33,7 @@ class EmitterSamplingTest : public GpuTest {
     settings.width = settings.height = size;
     settings.camera = scene.cameras[0];
     settings.view = view;
-    auto frame = (*renderer)->render(settings);
+    auto frame = render_updated(**renderer, settings, field->get());
     EXPECT_TRUE(frame.ok()) << frame.error().message;
     if (!frame.ok()) return glm::vec3(-1.0f);
     glm::dvec3 sum(0.0);

@@ -121,14 +121,13 @@ class FieldExtremesTest : public GpuTest {
     EXPECT_TRUE(s.field->update(updates, DirectMode::kTracedShadows).ok());
     run.answers = answers(*s.field, queries);
     if (frame) {
-      auto renderer = Renderer::create(context(), *s.scene, s.field.get(), backend);
+      auto renderer = Renderer::create(context(), *s.scene, s.field, backend);
       EXPECT_TRUE(renderer.ok()) << renderer.error().message;
       if (!renderer.ok()) return run;
       FrameSettings settings;
       settings.width = 16;
       settings.height = 16;
       settings.camera = scene.cameras.at(0);
-      settings.field_updates = 0;  // the field above, exactly as queried
       settings.tonemap = Tonemap::kClamp;
       auto result = (*renderer)->render(settings);
       EXPECT_TRUE(result.ok()) << result.error().message;

@@ -27,8 +27,7 @@ class FieldViewsTest : public GpuTest {
   Setup make(const Scene& scene, const IrradianceFieldParams& params) {
     Setup s{make_field_setup(scene, params), nullptr};
     if (!s.field) return s;
-    auto renderer =
-        Renderer::create(context(), *s.scene, s.field.get(), vk::TraceBackend::kRayQuery);
+    auto renderer = Renderer::create(context(), *s.scene, s.field, vk::TraceBackend::kRayQuery);
     EXPECT_TRUE(renderer.ok()) << renderer.error().message;
     if (renderer.ok()) s.renderer = std::move(renderer).value();
     return s;
@@ -40,7 +39,6 @@ class FieldViewsTest : public GpuTest {
     settings.height = height;
     settings.camera = camera;
     settings.view = view;
-    settings.field_updates = 0;  // draw the field exactly as read back
     settings.tonemap = Tonemap::kClamp;
     auto frame = renderer.render(settings);
     EXPECT_TRUE(frame.ok()) << frame.error().message;

@@ -13,6 +13,7 @@
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 #include "tests/gpu/two_rooms.h"
@@ -275,18 +276,18 @@ TEST_F(ProbeManagementTest, MovingObjectWakesSleepingProbesBeforeTheyShade) {
     FrameSettings settings;
     settings.width = 8;
     settings.height = 8;
-    settings.field_updates = 1;
-    ASSERT_TRUE((*renderer)->render(settings).ok());  // the round-robin is under way
+    auto render = [&] { return render_updated(**renderer, settings, f.get()).ok(); };
+    ASSERT_TRUE(render());  // the round-robin is under way
     auto asleep = f->read_probe_states();
     ASSERT_TRUE(asleep.ok());
 
     const glm::mat4 to =
         glm::translate(glm::mat4(1.0f), moved ? glm::vec3(0, 1, 0) : glm::vec3(40, 0, 0));
     ASSERT_TRUE(gpu->set_instance_transform(mover, to).ok());
-    ASSERT_TRUE((*renderer)->render(settings).ok());  // prepare() runs inside
+    ASSERT_TRUE(render());  // prepare() runs inside
     const uint32_t woken = static_cast<uint32_t>(f->probe_counts().active() - before.active());
     // Enough frames for every woken probe at 8 per update, and no more.
-    for (uint32_t u = 1; u < (woken + 7) / 8; ++u) ASSERT_TRUE((*renderer)->render(settings).ok());
+    for (uint32_t u = 1; u < (woken + 7) / 8; ++u) ASSERT_TRUE(render());
     auto states = f->read_probe_states();
     ASSERT_TRUE(states.ok());
     auto lit = f->query({side});

@@ -16,6 +16,7 @@
 #include "metrics/ssim.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace ddgi::test {
@@ -87,7 +88,7 @@ TEST_P(ReferenceTest, FieldIndirectMatchesPathTracedReference) {
     settings.height = indirect_ref->height;
     settings.camera = default_camera(*scene);
     settings.view = View::kIndirect;
-    auto frame = (*renderer)->render(settings);
+    auto frame = render_updated(**renderer, settings, field->get());
     EXPECT_TRUE(frame.ok()) << frame.error().message;
     if (!frame.ok()) return {};
     std::vector<float> ddgi;

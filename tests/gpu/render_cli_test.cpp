@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -85,6 +86,57 @@ TEST_F(RenderCliTest, RendersTheDefaultSceneToAPng) {
   EXPECT_GT(left[0], 1.5 * left[1]) << "left wall not red";
   EXPECT_GT(right[1], 1.5 * right[0]) << "right wall not green";
   EXPECT_GT(middle[0] + middle[1] + middle[2], 3 * 40.0) << "back wall dark";
+}
+
+// The per-pass table's values, by row name (summed where a name repeats), and the number after
+// `prefix` on its own line ("field update: 1.234 ms ...").
+std::map<std::string, double> pass_rows(const std::string& out) {
+  std::map<std::string, double> rows;
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const size_t last_space = line.find_last_of(' ');
+    if (last_space == std::string::npos || line.find(':') != std::string::npos) continue;
+    std::string name = line.substr(0, last_space);
+    name.erase(name.find_last_not_of(' ') + 1);
+    char* end = nullptr;
+    const double value = std::strtod(line.c_str() + last_space + 1, &end);
+    if (end && *end == '\0' && !name.empty()) rows[name] += value;
+  }
+  return rows;
+}
+
+double value_after(const std::string& out, const std::string& prefix) {
+  const size_t at = out.find(prefix);
+  return at == std::string::npos ? -1.0 : std::strtod(out.c_str() + at + prefix.size(), nullptr);
+}
+
+// With a shadow field, its passes run first; the field update's time (and so its Mrays/s) must
+// be the sum of the irradiance field's own passes, not of the first five rows (0.0025) and its own
+// (0.0005).of the table.
+TEST_F(RenderCliTest, FieldUpdateTimeIsTheSumOfTheFieldPassesOnly) {
+  const CliRun run = render("--out '" + (dir_ / "x.png").string() +
+                            "' --width 32 --height 24 --warmup 1 --direct shadow-field "
+                            "--field counts=3,3,3 --shadow-field counts=3,3,3");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::map<std::string, double> rows = pass_rows(run.out);
+  for (const char* name : {"shadow trace", "field trace", "borders", "primary"}) {
+    ASSERT_TRUE(rows.count(name)) << name << " missing from\n" << run.out;
+  }
+  const double field_sum = rows.at("field trace") + rows.at("field shade") +
+                           rows.at("blend irradiance") + rows.at("blend distance") +
+                           rows.at("borders");
+  const double shadow_sum = rows.at("shadow trace") + rows.at("shadow rays") +
+                            rows.at("shadow blend") + rows.at("shadow borders");
+  const double field_ms = value_after(run.out, "field update: ");
+  const double shadow_ms = value_after(run.out, "shadow field update: ");
+  // The table prints 3 decimals: the sums agree to rounding of five rows (0.0025) and its own
+  // (0.0005).
+  EXPECT_NEAR(field_ms, field_sum, 0.004) << run.out;
+  EXPECT_NEAR(shadow_ms, shadow_sum, 0.004) << run.out;
+  // Control: the passes took measurable time, so a mix-up of the two would show.
+  EXPECT_GT(shadow_sum, 0.01) << run.out;
+  EXPECT_GT(field_sum, 0.01) << run.out;
 }
 
 // Bad input: the exit code is non-zero and the message names what is wrong.

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "render/renderer.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/shadow_test_support.h"
 
@@ -52,8 +53,7 @@ class ShadowExtremesTest : public GpuTest {
     settings.camera = scene.cameras.at(0);
     settings.view = View::kDirect;
     settings.direct_mode = mode;
-    settings.shadow_field_updates = kUpdates;
-    auto frame = (*renderer)->render(settings);
+    auto frame = render_updated(**renderer, settings, nullptr, field->get(), {0, kUpdates});
     EXPECT_TRUE(frame.ok()) << frame.error().message;
     return frame.ok() ? frame->radiance : std::vector<float>{};
   }

@@ -9,6 +9,7 @@
 
 #include "gi/irradiance_field.h"
 #include "render/renderer.h"
+#include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/shadow_test_support.h"
 
@@ -70,9 +71,8 @@ class ShadowRenderTest : public GpuTest {
     settings.view = View::kDirect;
     settings.direct_mode = mode;
     settings.light_samples = light_samples;
-    settings.shadow_field_updates = shadow_updates;
-    settings.field_updates = 0;
-    auto frame = s.renderer->render(settings);
+    auto frame =
+        render_updated(*s.renderer, settings, s.field.get(), s.shadow.get(), {0, shadow_updates});
     EXPECT_TRUE(frame.ok()) << frame.error().message;
     return frame.ok() ? frame->radiance : std::vector<float>{};
   }
@@ -170,9 +170,7 @@ TEST_F(ShadowRenderTest, BackendsAgreeInShadowFieldMode) {
     settings.height = 36;
     settings.camera = gi.scene.cameras.at(0);
     settings.direct_mode = DirectMode::kShadowField;
-    settings.shadow_field_updates = 2;
-    settings.field_updates = 3;
-    auto frame = gi.renderer->render(settings);
+    auto frame = render_updated(*gi.renderer, settings, gi.field.get(), gi.shadow.get(), {3, 2});
     ASSERT_TRUE(frame.ok()) << frame.error().message;
     full[b] = frame->radiance;
   }
@@ -292,9 +290,7 @@ TEST_F(ShadowRenderTest, FramesUpdateTheShadowFieldTheProbeRaysRead) {
     settings.width = 8;
     settings.height = 8;
     settings.direct_mode = DirectMode::kTracedShadows;
-    settings.field_updates = 1;
-    settings.shadow_field_updates = 2;
-    ASSERT_TRUE((*renderer)->render(settings).ok());
+    ASSERT_TRUE(render_updated(**renderer, settings, field->get(), s.shadow.get(), {1, 2}).ok());
     EXPECT_EQ(s.shadow->updates(), probes_read_it ? 2u : 0u);
     EXPECT_EQ((*field)->updates(), 1u);
   }

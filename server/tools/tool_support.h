@@ -1,0 +1,54 @@
+// What every command-line tool (ddgi-render, ddgi-bench, ddgi-eval, ddgi-shadow-eval) does the
+// same way: the exit status of a run, the Vulkan context from the common flags, medians of
+// timings, and per-group totals of a frame's pass times.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/flags.h"
+#include "core/result.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+#include "vk/timer.h"
+
+namespace ddgi::tools {
+
+// Runs `run`; on failure prints "<tool>: <message>" to stderr. Exit status 0 on success, 2 for
+// invalid arguments (usage errors), 1 for anything else.
+int tool_main(const char* tool, Status (*run)(int, char**), int argc, char** argv);
+
+// A context from --backend (auto | query | pipeline), --device and --validation, where the
+// tool declared them.
+Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags);
+
+// Loads a scene, logging its warnings.
+Result<Scene> load_scene_logged(const std::string& path);
+
+double median(std::vector<double> values);
+
+// "dir/living_room.ddgi.json" -> "living_room": names of files written per scene.
+std::string file_stem(const std::string& path);
+
+// Median milliseconds over frames, per pass name (in first-seen order) and per pass group.
+class PassTable {
+ public:
+  void add(const std::vector<vk::PassTime>& frame);
+  struct Row {
+    std::string name;
+    vk::PassGroup group;
+    double median_ms;
+  };
+  std::vector<Row> rows() const;
+  double pass_median(const std::string& name) const;
+  // The median over frames of each frame's summed time of `group`.
+  double group_median(vk::PassGroup group) const;
+  // The same for every group but `group` (e.g. all frame-side passes).
+  double others_median(vk::PassGroup group) const;
+
+ private:
+  std::vector<std::vector<vk::PassTime>> frames_;
+};
+
+}  // namespace ddgi::tools
