@@ -49,7 +49,7 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.limits = &server->options_.limits;
   env.metrics = &server->metrics_;
   env.encoder = server->encoder_.get();
-  server->sessions_ = std::make_unique<SessionRegistry>(env);
+  server->sessions_ = std::make_unique<SessionRegistry>(env, options.test_session_loaded_hook);
   server->service_ = std::make_unique<RenderServiceImpl>(
       context, options.limits, SceneLibrary(options.scene_root), BearerAuth(options.auth_token),
       server->metrics_, *server->sessions_);

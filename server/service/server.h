@@ -6,6 +6,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -32,6 +33,8 @@ struct ServerOptions {
   std::string metrics_address = "0.0.0.0";
   unsigned encode_threads = 2;
   std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
+  // Test-only: no flag sets it. See SessionRegistry::SessionLoadedHook.
+  SessionRegistry::SessionLoadedHook test_session_loaded_hook;
 };
 
 class Server {

@@ -7,7 +7,8 @@
 
 namespace ddgi::service {
 
-SessionRegistry::SessionRegistry(SessionEnv env) : env_(std::move(env)) {}
+SessionRegistry::SessionRegistry(SessionEnv env, SessionLoadedHook loaded_hook)
+    : env_(std::move(env)), loaded_hook_(std::move(loaded_hook)) {}
 
 SessionRegistry::~SessionRegistry() {
   close_all();
@@ -52,7 +53,8 @@ Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::S
     tracker->done.notify_all();
   };
   const std::string label = scene.label;
-  Completion finish = [this, id, done](const Status& status) {
+  Completion finish = [this, id, label, done](const Status& status) {
+    if (loaded_hook_) loaded_hook_(label);
     if (!status.ok()) {
       LOG_INFO << "session failed to load session=" << id << ": " << status.error().message;
       (void)close(id, nullptr);

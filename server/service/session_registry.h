@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -17,7 +18,13 @@ namespace ddgi::service {
 
 class SessionRegistry {
  public:
-  explicit SessionRegistry(SessionEnv env);
+  // Test-only: runs on a new session's loop thread once its scene load ended (with the scene's
+  // label), before CreateSession is answered. A test that blocks in it holds the session in the
+  // "not ready" state for as long as it needs, instead of counting on a slow load
+  // (tests/service/abandoned_session_test.cpp). Production servers leave it empty.
+  using SessionLoadedHook = std::function<void(const std::string& scene_label)>;
+
+  explicit SessionRegistry(SessionEnv env, SessionLoadedHook loaded_hook = {});
   ~SessionRegistry();
 
   // Starts a session; RESOURCE_EXHAUSTED beyond max_sessions. `done` runs once the scene is
@@ -46,6 +53,7 @@ class SessionRegistry {
   std::string new_id();
 
   SessionEnv env_;
+  SessionLoadedHook loaded_hook_;
   std::shared_ptr<LoopTracker> loops_ = std::make_shared<LoopTracker>();
   mutable std::mutex mutex_;
   std::map<std::string, std::shared_ptr<Session>> sessions_;

@@ -140,15 +140,25 @@ class FieldExtremesTest : public GpuTest {
   }
 };
 
-void expect_finite_positive(const std::vector<glm::vec3>& values) {
+// Every channel of every answer finite and at least `floor` (> 0). All the points these tests
+// query see light, directly or bounced once, so an all-black field, e.g. from a pass that wrote
+// nothing, fails; each caller states its floor and the darkest value it measured.
+void expect_finite_lit(const std::vector<glm::vec3>& values, float floor) {
   ASSERT_FALSE(values.empty());
-  for (const glm::vec3& v : values) {
+  ASSERT_GT(floor, 0.0f);
+  for (size_t i = 0; i < values.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      EXPECT_TRUE(std::isfinite(v[c]));
-      EXPECT_GE(v[c], 0.0f);
+      EXPECT_TRUE(std::isfinite(values[i][c])) << "answer " << i << " channel " << c;
+      EXPECT_GE(values[i][c], floor) << "answer " << i << " channel " << c;
     }
   }
 }
+
+// The floor for the Cornell-box queries at the box's own light intensity: the darkest channel of
+// any answer measured 0.181 (at 64 rays per probe; 0.161 with a single probe, 0.199 with a layer
+// in the floor, 0.262 at 1024 rays), so a quarter of it leaves room for noise and still needs
+// the light to have arrived.
+constexpr float kCornellFloor = 0.05f;
 
 // Worst |value / expected - 1| over every channel of every answer.
 float worst_relative_error(const std::vector<glm::vec3>& values, float expected) {
@@ -169,7 +179,7 @@ TEST_F(FieldExtremesTest, LightIntensityScalesLinearlyFrom1eMinus6To1e6) {
   const std::vector<IrradianceQuery> queries = cornell_queries();
   Scene base = make_cornell_box();
   const Run reference = converge(base, cornell_grid(), queries, 24, true);
-  expect_finite_positive(reference.answers);
+  expect_finite_lit(reference.answers, kCornellFloor);
   ASSERT_EQ(reference.frame.size(), 16u * 16u * 4u);
   const double reference_mean = mean_rgb(reference.frame);
   ASSERT_GT(reference_mean, 0.0);
@@ -177,7 +187,7 @@ TEST_F(FieldExtremesTest, LightIntensityScalesLinearlyFrom1eMinus6To1e6) {
     Scene scene = base;
     scene.lights[0].intensity *= factor;
     const Run scaled = converge(scene, cornell_grid(), queries, 24, true);
-    expect_finite_positive(scaled.answers);
+    expect_finite_lit(scaled.answers, kCornellFloor * factor);  // measured 0.181 x factor
     for (size_t i = 0; i < reference.answers.size() && i < scaled.answers.size(); ++i) {
       for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(scaled.answers[i][c] / factor, reference.answers[i][c],
@@ -197,7 +207,7 @@ TEST_F(FieldExtremesTest, LightIntensityScalesLinearlyFrom1eMinus6To1e6) {
 // same GI frame from the scaled camera.
 TEST_F(FieldExtremesTest, SceneScaleFrom1eMinus3To1e4MatchesUnscaled) {
   const Run reference = converge(make_cornell_box(), cornell_grid(), cornell_queries(), 24, true);
-  expect_finite_positive(reference.answers);
+  expect_finite_lit(reference.answers, kCornellFloor);
   ASSERT_EQ(reference.frame.size(), 16u * 16u * 4u);
   const double reference_mean = mean_rgb(reference.frame);
   ASSERT_GT(reference_mean, 0.0);
@@ -205,7 +215,7 @@ TEST_F(FieldExtremesTest, SceneScaleFrom1eMinus3To1e4MatchesUnscaled) {
     Scene scene = make_cornell_box();
     scale_scene(scene, scale);
     const Run scaled = converge(scene, cornell_grid(scale), cornell_queries(scale), 24, true);
-    expect_finite_positive(scaled.answers);
+    expect_finite_lit(scaled.answers, kCornellFloor);  // measured 0.181 at both scales
     for (size_t i = 0; i < reference.answers.size() && i < scaled.answers.size(); ++i) {
       for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(scaled.answers[i][c], reference.answers[i][c],
@@ -226,7 +236,8 @@ TEST_F(FieldExtremesTest, SceneScaleFrom1eMinus3To1e4MatchesUnscaled) {
 TEST_F(FieldExtremesTest, SmallestAndLargestRaysPerProbe) {
   IrradianceFieldParams one = cornell_grid();
   one.rays_per_probe = 1;
-  expect_finite_positive(converge(make_cornell_box(), one, cornell_queries(), 16).answers);
+  // Measured darkest 0.051: one ray per probe per update leaves some texels dim.
+  expect_finite_lit(converge(make_cornell_box(), one, cornell_queries(), 16).answers, 0.01f);
 
   IrradianceFieldParams many = cornell_grid();
   many.rays_per_probe = 1024;
@@ -236,7 +247,7 @@ TEST_F(FieldExtremesTest, SmallestAndLargestRaysPerProbe) {
       converge(make_cornell_box(), many, cornell_queries(), 32).answers;
   const std::vector<glm::vec3> b =
       converge(make_cornell_box(), fewer, cornell_queries(), 32).answers;
-  expect_finite_positive(a);
+  expect_finite_lit(a, kCornellFloor);
   float sum_a = 0.0f, sum_b = 0.0f;
   for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
     sum_a += a[i].x + a[i].y + a[i].z;
@@ -404,7 +415,7 @@ TEST_P(FurnaceExtremesTest, ProbesOnTheFloorPlaneGiveTheFurnaceValueFacingUp) {
     params.counts = {2, 3, 2};
     params.hysteresis = 0.0f;
     const Run run = converge(load_white_box(rho, le), params, up, 24, false, GetParam());
-    expect_finite_positive(run.answers);
+    expect_finite_lit(run.answers, 1.0f);  // half the furnace value Le / (1 - rho) = 2
     // Measured: 1e-6 at +-1 mm and exactly in the plane.
     EXPECT_LE(worst_relative_error(run.answers, le / (1.0f - rho)), 1e-3f)
         << "probe layer at y = " << floor_y;
@@ -414,15 +425,16 @@ TEST_P(FurnaceExtremesTest, ProbesOnTheFloorPlaneGiveTheFurnaceValueFacingUp) {
 INSTANTIATE_TEST_SUITE_P(Backends, FurnaceExtremesTest, ::testing::Values(kQuery, kPipeline));
 
 // The Cornell box with a single probe and with a probe layer in the floor plane: no analytic
-// value, but everything stays finite and non-negative.
+// value, but everything stays finite and lit.
 TEST_F(FieldExtremesTest, SingleProbeAndOnSurfaceGridsStayFiniteInTheCornellBox) {
   IrradianceFieldParams single = cornell_grid();
   single.origin = {0.0f, 1.0f, 0.0f};
   single.counts = {1, 1, 1};
-  expect_finite_positive(converge(make_cornell_box(), single, cornell_queries()).answers);
+  expect_finite_lit(converge(make_cornell_box(), single, cornell_queries()).answers, kCornellFloor);
   IrradianceFieldParams on_floor = cornell_grid();
   on_floor.origin = {-0.75f, 0.0f, -0.75f};
-  expect_finite_positive(converge(make_cornell_box(), on_floor, cornell_queries()).answers);
+  expect_finite_lit(converge(make_cornell_box(), on_floor, cornell_queries()).answers,
+                    kCornellFloor);
 }
 
 // A spacing so large that squared distances would leave fp32 (the cell diagonal is 1.7e20):
@@ -434,7 +446,8 @@ TEST_F(FieldExtremesTest, HugeSpacingKeepsTheDistanceMomentsFinite) {
   huge.origin = {0.0f, 1.0f, 0.0f};
   huge.counts = {2, 2, 2};
   EXPECT_FLOAT_EQ(visibility_range(huge.spacing), 1e17f);
-  expect_finite_positive(converge(make_cornell_box(), huge, cornell_queries(), 4).answers);
+  // Measured darkest 0.066 after only 4 updates.
+  expect_finite_lit(converge(make_cornell_box(), huge, cornell_queries(), 4).answers, 0.02f);
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <vector>
+
 #include "vk/context.h"
 
 namespace ddgi::test {
@@ -28,5 +31,23 @@ class GpuTest : public ::testing::Test {
   uint32_t messages_before_ = 0;
   uint32_t messages_expected_ = 0;
 };
+
+// The spread of a result: over the first `channels` of every `stride` values (RGB of an RGBA
+// image: 4, 3; all values: 1, 1).
+struct ValueSpread {
+  double mean = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  size_t count = 0;
+};
+ValueSpread value_spread(const std::vector<float>& values, size_t stride = 1, size_t channels = 1);
+
+// Two backends that agree, or a result within a tolerance of another, prove nothing when the
+// result is trivial: a pass that writes nothing gives two equal black images, a field that never
+// updates two equal initial atlases. Comparisons assert this on one side: a mean of at least
+// `min_mean` (not black) and max - min of at least `min_range` (not one value everywhere, e.g. the
+// initial state); non-finite values fail it. The message gives what was measured.
+::testing::AssertionResult is_nontrivial(const std::vector<float>& values, double min_mean,
+                                         double min_range, size_t stride = 1, size_t channels = 1);
 
 }  // namespace ddgi::test

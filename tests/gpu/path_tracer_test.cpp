@@ -290,7 +290,8 @@ TEST_F(PathTracerTest, BackendsGiveTheSameImage) {
   // Same rays, same random numbers: only float rounding may differ.
   EXPECT_LE(max_abs_difference(query.radiance, pipeline.radiance),
             1e-4f * max_value(query.radiance));
-  EXPECT_GT(max_value(query.radiance), 0.1f);
+  // Lit and not flat, or the agreement means nothing. Measured: mean 0.490, range 0 .. 12.
+  EXPECT_TRUE(is_nontrivial(query.radiance, 0.1, 1.0, 4, 3));
 }
 
 // Full = direct + indirect, and = punctual direct + field indirect: the same paths, split.

@@ -42,6 +42,8 @@ TEST_F(RenderTest, BackendsAgreeOnCornellBox) {
   ASSERT_EQ(query.radiance.size(), pipeline.radiance.size());
   // Same hits, same shading code: only float rounding may differ.
   EXPECT_LE(max_abs_difference(query.radiance, pipeline.radiance), 1e-5f);
+  // Not black, not flat. Measured: mean 0.239, range 0 .. 60.0 (the light).
+  EXPECT_TRUE(is_nontrivial(query.radiance, 0.05, 0.5, 4, 3));
   // Not trivially black or uniform: the back wall is lit, the left wall is red, the right green.
   auto pixel = [&](int x, int y) {
     const float* p = &query.radiance[(size_t(y) * 64 + x) * 4];

@@ -174,6 +174,10 @@ TEST_F(ShadowRenderTest, BackendsAgreeInShadowFieldMode) {
     ASSERT_TRUE(frame.ok()) << frame.error().message;
     full[b] = frame->radiance;
   }
+  // Agreement means nothing on black frames (relative_difference is 0 for them). Measured on
+  // the query backend: direct mean 0.156, range 0 .. 1.285; full mean 0.161, range 0 .. 1.235.
+  EXPECT_TRUE(is_nontrivial(direct[0], 0.04, 0.4, 4, 3)) << "direct frame";
+  EXPECT_TRUE(is_nontrivial(full[0], 0.04, 0.4, 4, 3)) << "full frame";
   const float direct_difference = relative_difference(direct[1], direct[0]);
   const float full_difference = relative_difference(full[1], full[0]);
   std::printf("backends, shadow-field mode: direct %.2e, full with GI %.2e\n", direct_difference,

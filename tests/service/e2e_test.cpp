@@ -6,10 +6,13 @@
 #include "encode/jpeg.h"
 #include "gi/field_param_table.h"
 #include "gi/irradiance_field.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "shared/shadow_field_data.h"
+#include "tests/service/atlas_download.h"
 #include "tests/service/glb_builder.h"
 #include "tests/service/reflection_probe.h"
 #include "tests/service/service_fixture.h"
@@ -428,21 +431,30 @@ TEST_F(E2eTest, ShadowFieldSession) {
   }
   EXPECT_TRUE(found);
 
+  // The atlas size follows from the session's parameters alone: 3x3x3 probes tile
+  // ceil(sqrt(27)) = 6 per row in 5 rows, each tile the default interior plus a border on both
+  // sides, one band of 4 channels (the default max_lights = 4 fits one group of 4).
+  const uint32_t tile = ShadowFieldParams{}.texels + 2 * gpu::kShadowAtlasBorder;
+  const uint64_t raw_bytes = uint64_t(6 * tile) * (5 * tile) * 4 * sizeof(float);
   for (auto kind : {v1::ATLAS_KIND_SHADOW, v1::ATLAS_KIND_SHADOW_MOMENTS}) {
-    v1::DumpAtlasRequest dump;
-    dump.set_session_id(info.session_id());
-    dump.set_kind(kind);
-    ctx = context();
-    auto reader = stub_->DumpAtlas(ctx.get(), dump);
-    v1::AtlasChunk chunk;
-    ASSERT_TRUE(reader->Read(&chunk));
-    EXPECT_EQ(chunk.metadata().probe_counts_x(), 3);
-    EXPECT_EQ(chunk.metadata().channels_size(), 4);
-    uint64_t bytes = 0;
-    while (reader->Read(&chunk)) bytes += chunk.data().size();
-    EXPECT_TRUE(reader->Finish().ok());
-    EXPECT_EQ(bytes, chunk.metadata().total_bytes() ? chunk.metadata().total_bytes() : bytes);
-    EXPECT_GT(bytes, 0u);
+    for (auto format : {v1::ATLAS_FORMAT_RAW_F32, v1::ATLAS_FORMAT_EXR}) {
+      SCOPED_TRACE(v1::AtlasKind_Name(kind) + " " + v1::AtlasFormat_Name(format));
+      const AtlasDownload dump = download_atlas(*stub_, info.session_id(), kind, format);
+      ASSERT_TRUE(dump.status.ok()) << dump.status.error_message();
+      EXPECT_EQ(dump.metadata.probe_counts_x(), 3);
+      EXPECT_EQ(dump.metadata.channels_size(), 4);
+      EXPECT_EQ(dump.metadata.width(), 6 * tile);
+      EXPECT_EQ(dump.metadata.height(), 5 * tile);
+      // The data chunks carry exactly the bytes the metadata announced...
+      EXPECT_EQ(dump.bytes.size(), dump.metadata.total_bytes());
+      // ...and raw float32 texels are exactly the atlas computed above (a compressed EXR's size
+      // is not predictable, only non-empty).
+      if (format == v1::ATLAS_FORMAT_RAW_F32) {
+        EXPECT_EQ(dump.bytes.size(), raw_bytes);
+      } else {
+        EXPECT_GT(dump.bytes.size(), 0u);
+      }
+    }
   }
 }
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gi/field_param_table.h"
@@ -238,13 +240,76 @@ TEST(FieldParams, FlatAndEmptyBoundsGiveValidGrids) {
 }
 
 TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
-  for (const FieldParamInfo& info : field_param_infos()) {
-    IrradianceFieldParams p;
-    auto value = get_field_param(p, info.name);
-    ASSERT_TRUE(value.ok()) << info.name;
-    // Writing back what was read changes nothing.
-    ASSERT_TRUE(set_field_param(p, info.name, *value).ok()) << info.name << "=" << *value;
-    EXPECT_EQ(*get_field_param(p, info.name), *value) << info.name;
+  // Every member gets a value of its own, equal to no other member's and to no default (all
+  // exact in binary, so the text reads back unchanged): a name wired to the wrong member then
+  // writes or reads a value that gives it away. (Round-tripping the defaults missed a swap of
+  // hysteresis and distance_hysteresis: both are 0.97.)
+  const std::vector<std::pair<std::string, std::string>> values = {
+      {"origin", "0.125,0.25,0.375"},
+      {"spacing", "1.5,1.75,2.25"},
+      {"counts", "3,5,7"},
+      {"rays_per_probe", "96"},
+      {"fixed_rays", "24"},
+      {"max_ray_distance", "1000"},
+      {"irradiance_texels", "6"},
+      {"distance_texels", "12"},
+      {"hysteresis", "0.875"},
+      {"distance_hysteresis", "0.9375"},
+      {"change_threshold", "0.3125"},
+      {"new_distribution_threshold", "0.6875"},
+      {"irradiance_gamma", "4.5"},
+      {"distance_exponent", "40"},
+      {"backface_distance_scale", "0.0625"},
+      {"self_shadow_bias", "1.25"},
+      {"energy_conservation", "0.96875"},
+      {"weight_crush_threshold", "0.15625"},
+      {"relocation_iterations", "9"},
+      {"classification", "false"},
+      {"probe_offset_limit", "0.4375"},
+      {"min_frontface_distance", "0.34375"},
+      {"backface_threshold", "0.5625"},
+      {"max_rays_per_update", "100000"},
+      {"emitter_samples", "11"},
+      {"probe_direct", "unshadowed"},
+      {"seed", "17"}};
+  ASSERT_EQ(values.size(), field_param_infos().size()) << "a parameter without a value here";
+  IrradianceFieldParams p;
+  for (const auto& [name, text] : values) {
+    ASSERT_TRUE(set_field_param(p, name, text).ok()) << name << "=" << text;
+  }
+  // Each name wrote its own member...
+  EXPECT_EQ(p.origin, glm::vec3(0.125f, 0.25f, 0.375f));
+  EXPECT_EQ(p.spacing, glm::vec3(1.5f, 1.75f, 2.25f));
+  EXPECT_EQ(p.counts, glm::ivec3(3, 5, 7));
+  EXPECT_EQ(p.rays_per_probe, 96u);
+  EXPECT_EQ(p.fixed_rays, 24u);
+  EXPECT_EQ(p.max_ray_distance, 1000.0f);
+  EXPECT_EQ(p.irradiance_texels, 6u);
+  EXPECT_EQ(p.distance_texels, 12u);
+  EXPECT_EQ(p.hysteresis, 0.875f);
+  EXPECT_EQ(p.distance_hysteresis, 0.9375f);
+  EXPECT_EQ(p.change_threshold, 0.3125f);
+  EXPECT_EQ(p.new_distribution_threshold, 0.6875f);
+  EXPECT_EQ(p.irradiance_gamma, 4.5f);
+  EXPECT_EQ(p.distance_exponent, 40.0f);
+  EXPECT_EQ(p.backface_distance_scale, 0.0625f);
+  EXPECT_EQ(p.self_shadow_bias, 1.25f);
+  EXPECT_EQ(p.energy_conservation, 0.96875f);
+  EXPECT_EQ(p.weight_crush_threshold, 0.15625f);
+  EXPECT_EQ(p.relocation_iterations, 9u);
+  EXPECT_FALSE(p.classification);
+  EXPECT_EQ(p.probe_offset_limit, 0.4375f);
+  EXPECT_EQ(p.min_frontface_distance, 0.34375f);
+  EXPECT_EQ(p.backface_threshold, 0.5625f);
+  EXPECT_EQ(p.max_rays_per_update, 100000u);
+  EXPECT_EQ(p.emitter_samples, 11u);
+  EXPECT_EQ(p.probe_direct, DirectMode::kUnshadowed);
+  EXPECT_EQ(p.seed, 17u);
+  // ...and reads it back as the same text.
+  for (const auto& [name, text] : values) {
+    auto value = get_field_param(p, name);
+    ASSERT_TRUE(value.ok()) << name;
+    EXPECT_EQ(*value, text) << name;
   }
 }
 

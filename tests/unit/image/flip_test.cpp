@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -272,6 +273,92 @@ TEST(Flip, RejectsMismatchedSizesAndBadPpd) {
 TEST(Flip, PixelsPerDegreeOfThePaperSetup) {
   EXPECT_NEAR(pixels_per_degree(0.7, 3840.0, 0.7), 3840.0 * std::numbers::pi / 180.0, 1e-9);
   EXPECT_NEAR(pixels_per_degree(0.7, 3840.0, 0.7), 67.02, 0.01);
+}
+
+// Golden values from an independent implementation of LDR-FLIP (numpy, written from the paper's
+// formulas and the choices in docs/metrics.md, sharing no code with server/metrics/), for three
+// small image pairs built from integer codes / 256 (exact in float and double) by the same
+// formulas here and in the script. The expectations of the tests above come partly from the
+// library's own stages; these do not. Regenerate with
+//   /usr/bin/python3 tests/data/flip/make_flip_golden.py
+// Tolerance 1e-6. Measured: the means agree to 5e-10 (the printed digits), the pixels to 3e-8 (the
+// map is stored as float); the two sides convolve in a different order (separable vs 2-D), which
+// only moves rounding. Swapping the b1 of the achromatic and red-green CSFs moves the means by
+// 1.2e-4 to 1.1e-3.
+constexpr double kGoldenTolerance = 1e-6;
+
+template <typename Code>
+TestImage coded_image(uint32_t width, uint32_t height, Code code) {
+  TestImage image = constant_image(width, height, 0.0f, 0.0f, 0.0f);
+  for (uint32_t y = 0; y < height; ++y) {
+    for (uint32_t x = 0; x < width; ++x) {
+      for (uint32_t c = 0; c < 3; ++c) image.at(x, y, c) = float(code(x, y, c)) / 256.0f;
+    }
+  }
+  return image;
+}
+
+struct GoldenPixel {
+  uint32_t x, y;
+  double error;
+};
+
+void expect_golden(const TestImage& reference, const TestImage& test, double ppd, double mean,
+                   std::initializer_list<GoldenPixel> pixels) {
+  Result<FlipResult> result = flip(reference.view(), test.view(), {.pixels_per_degree = ppd});
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_NEAR(result->mean, mean, kGoldenTolerance);
+  for (const GoldenPixel& p : pixels) {
+    EXPECT_NEAR(result->error_map[size_t{p.y} * reference.width + p.x], p.error, kGoldenTolerance)
+        << "pixel " << p.x << "," << p.y;
+  }
+}
+
+// A gradient and the same with a saturated orange square: colour and edge terms inside, at the
+// square's corner and far from it.
+TEST(FlipGolden, SquareOnAGradient) {
+  const auto gradient = [](uint32_t x, uint32_t y, uint32_t c) {
+    return std::array<uint32_t, 3>{16 + 8 * x, 16 + 10 * y, 128}[c];
+  };
+  const TestImage reference = coded_image(24, 18, gradient);
+  const TestImage test = coded_image(24, 18, [&](uint32_t x, uint32_t y, uint32_t c) {
+    const bool in_square = x >= 9 && x <= 14 && y >= 6 && y <= 11;
+    return in_square ? std::array<uint32_t, 3>{240, 64, 32}[c] : gradient(x, y, c);
+  });
+  expect_golden(reference, test, 67.0, 0.138058533,
+                {{11, 8, 0.841289069}, {9, 6, 0.631190432}, {4, 4, 0.029127380}});
+}
+
+// Reddish/greenish bars against yellowish/bluish bars, two pixels wide, at 20 ppd (small
+// filters, so the chroma differences survive the CSF).
+TEST(FlipGolden, ColouredBars) {
+  const TestImage reference = coded_image(16, 12, [](uint32_t x, uint32_t, uint32_t c) {
+    return (x / 2) % 2 == 0 ? std::array<uint32_t, 3>{160, 96, 96}[c]
+                            : std::array<uint32_t, 3>{96, 160, 96}[c];
+  });
+  const TestImage test = coded_image(16, 12, [](uint32_t x, uint32_t, uint32_t c) {
+    return (x / 2) % 2 == 0 ? std::array<uint32_t, 3>{160, 160, 96}[c]
+                            : std::array<uint32_t, 3>{96, 96, 160}[c];
+  });
+  expect_golden(reference, test, 20.0, 0.836616545,
+                {{0, 0, 0.785558524}, {5, 7, 0.748412861}, {15, 11, 0.957083914}});
+}
+
+// Integer-hash noise and a perturbed copy, each with one pixel outside [0,1] (clamped on input).
+TEST(FlipGolden, NoiseWithOutOfRangePixels) {
+  TestImage reference = coded_image(
+      20, 16, [](uint32_t x, uint32_t y, uint32_t c) { return (x * 37 + y * 101 + c * 59) % 256; });
+  TestImage test = coded_image(20, 16, [](uint32_t x, uint32_t y, uint32_t c) {
+    return (x * 37 + y * 101 + c * 59 + 11 * ((x + 2 * y) % 5)) % 256;
+  });
+  reference.at(3, 4, 0) = 1.25f;
+  reference.at(3, 4, 1) = -0.25f;
+  reference.at(3, 4, 2) = 0.5f;
+  test.at(15, 9, 0) = -0.5f;
+  test.at(15, 9, 1) = 1.5f;
+  test.at(15, 9, 2) = 2.0f;
+  expect_golden(reference, test, 67.0, 0.337437402,
+                {{3, 4, 0.227287255}, {15, 9, 0.349124339}, {10, 10, 0.333380311}});
 }
 
 TEST(ErrorColormap, LightnessRisesMonotonicallyFromDarkToBright) {
