@@ -72,4 +72,13 @@ ImageRgbF to_linear(const ImageRgba8& image) {
   return out;
 }
 
+ImageRgbF rgb_from_rgba(uint32_t width, uint32_t height, const std::vector<float>& rgba) {
+  ImageRgbF out{width, height, {}};
+  out.rgb.reserve(rgba.size() / 4 * 3);
+  for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+    out.rgb.insert(out.rgb.end(), &rgba[i], &rgba[i + 3]);
+  }
+  return out;
+}
+
 }  // namespace ddgi::encode

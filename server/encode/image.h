@@ -44,5 +44,7 @@ float linear_to_srgb(float linear);
 ImageRgba8 to_srgb8(const ImageRgbF& image);
 // 8-bit sRGB -> linear float, exact inverse of the transfer function; alpha is dropped.
 ImageRgbF to_linear(const ImageRgba8& image);
+// Drops the alpha of RGBA floats (the renderer's and path tracer's HDR buffers), for EXR.
+ImageRgbF rgb_from_rgba(uint32_t width, uint32_t height, const std::vector<float>& rgba);
 
 }  // namespace ddgi::encode

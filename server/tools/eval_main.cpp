@@ -22,6 +22,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/reference_render.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
 
@@ -118,10 +119,7 @@ Result<Scores> score(const std::vector<uint8_t>& reference, const std::vector<ui
 Status write_exr(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
                  const std::vector<float>& rgba) {
   if (dir.empty()) return ok_status();
-  encode::ImageRgbF image{width, height, {}};
-  for (size_t i = 0; i < rgba.size(); i += 4)
-    image.rgb.insert(image.rgb.end(), &rgba[i], &rgba[i + 3]);
-  return encode::write_image(dir + "/" + name + ".exr", image);
+  return encode::write_image(dir + "/" + name + ".exr", encode::rgb_from_rgba(width, height, rgba));
 }
 
 // What the flags ask for.
@@ -151,51 +149,26 @@ Result<EvalJob> parse_job(const Flags& flags) {
   return job;
 }
 
-// The two references of a scene's default view, tone-mapped with one exposure (chosen from the
-// full one): the full image and its field part.
-struct References {
-  PathTraceSettings settings;
-  float exposure = 1.0f;
-  PathTraceImage full, indirect;
-};
-
-Result<References> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
-                                   const std::string& stem) {
-  References refs;
-  PathTraceSettings& pt = refs.settings;
-  pt.width = job.width;
-  pt.height = job.height;
-  pt.camera = default_camera(scene);
-  pt.jitter = false;  // the DDGI frame traces pixel centres too
-  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
-  DDGI_ASSIGN_OR_RETURN(auto tracer,
-                        PathTracer::create(context, *gpu_scene, context.default_backend()));
-  auto accumulate = [&](PathTraceView view) -> Status {
-    pt.view = view;
-    for (int64_t done = 0; done < job.spp;) {
-      const uint32_t batch = static_cast<uint32_t>(std::min<int64_t>(64, job.spp - done));
-      DDGI_TRY(tracer->accumulate(pt, batch));
-      done += batch;
-    }
-    return ok_status();
-  };
-  // The full reference first: it sets the exposure both references are tone-mapped with.
-  DDGI_TRY(accumulate(PathTraceView::kFull));
-  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
-  refs.exposure = auto_exposure(linear.radiance);
-  DDGI_ASSIGN_OR_RETURN(refs.full, tracer->read(Tonemap::kAces, refs.exposure));
-  DDGI_TRY(accumulate(PathTraceView::kFieldIndirect));
-  DDGI_ASSIGN_OR_RETURN(refs.indirect, tracer->read(Tonemap::kAces, refs.exposure));
-  DDGI_TRY(write_exr(job.out_dir, stem + ".reference", pt.width, pt.height, refs.full.radiance));
-  DDGI_TRY(write_exr(job.out_dir, stem + ".reference-indirect", pt.width, pt.height,
-                     refs.indirect.radiance));
+Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
+                                      const std::string& stem) {
+  ReferencePairOptions options;
+  options.width = job.width;
+  options.height = job.height;
+  options.camera = default_camera(scene);
+  options.full_spp = options.second_spp = static_cast<uint32_t>(job.spp);
+  options.second_view = PathTraceView::kFieldIndirect;
+  options.exposure = auto_exposure;
+  DDGI_ASSIGN_OR_RETURN(ReferencePair refs, reference_pair(context, scene, options));
+  DDGI_TRY(write_exr(job.out_dir, stem + ".reference", job.width, job.height, refs.full.radiance));
+  DDGI_TRY(write_exr(job.out_dir, stem + ".reference-indirect", job.width, job.height,
+                     refs.second.radiance));
   return refs;
 }
 
 // One table row: a warmed-up field of `config`, `frames` timed full frames (one update each),
 // then the indirect view, both scored against the references.
 Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& scene,
-                       const std::string& stem, const References& refs, const Config& config) {
+                       const std::string& stem, const ReferencePair& refs, const Config& config) {
   std::vector<std::string> assignments = job.field_assignments;
   assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
   DDGI_ASSIGN_OR_RETURN(const GiStackOptions options,
@@ -224,7 +197,7 @@ Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& sc
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
   DDGI_ASSIGN_OR_RETURN(const Scores s_full, score(refs.full.ldr, full.ldr, job.width, job.height));
   DDGI_ASSIGN_OR_RETURN(const Scores s_ind,
-                        score(refs.indirect.ldr, indirect.ldr, job.width, job.height));
+                        score(refs.second.ldr, indirect.ldr, job.width, job.height));
   std::string tag = config.name;
   std::replace(tag.begin(), tag.end(), ' ', '-');
   DDGI_TRY(write_exr(job.out_dir, stem + "." + tag, job.width, job.height, full.radiance));
@@ -265,7 +238,7 @@ Status run(int argc, char** argv) {
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     const std::string stem = tools::file_stem(scene_path);
-    DDGI_ASSIGN_OR_RETURN(const References refs, make_references(*context, job, scene, stem));
+    DDGI_ASSIGN_OR_RETURN(const ReferencePair refs, make_references(*context, job, scene, stem));
     for (const Config& config : job.configs) {
       DDGI_TRY(evaluate_config(*context, job, scene, stem, refs, config));
     }

@@ -1,3 +1,4 @@
+// The tools' path-traced references (tools/reference_render.h).
 #include "tools/reference_render.h"
 
 #include <algorithm>
@@ -25,12 +26,8 @@ Status write(const ReferenceOptions& options, const PathTraceImage& image) {
   DDGI_ASSIGN_OR_RETURN(const encode::ImageFormat format,
                         encode::format_from_path(options.out_path));
   if (format == encode::ImageFormat::kExr) {
-    encode::ImageRgbF hdr{image.width, image.height, {}};
-    hdr.rgb.reserve(size_t(image.width) * image.height * 3);
-    for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
-      hdr.rgb.insert(hdr.rgb.end(), &image.radiance[i * 4], &image.radiance[i * 4 + 3]);
-    }
-    return encode::write_image(options.out_path, hdr);
+    return encode::write_image(options.out_path,
+                               encode::rgb_from_rgba(image.width, image.height, image.radiance));
   }
   encode::WriteOptions write_options;
   write_options.jpeg_quality = options.jpeg_quality;
@@ -82,6 +79,37 @@ Status render_reference(vk::Context& context, GpuScene& scene, vk::TraceBackend 
                           " Vulkan validation messages (see above)");
   }
   return ok_status();
+}
+
+Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
+                                     const ReferencePairOptions& options) {
+  ReferencePair pair;
+  PathTraceSettings& pt = pair.settings;
+  pt.width = options.width;
+  pt.height = options.height;
+  pt.camera = options.camera;
+  pt.jitter = false;  // frames trace pixel centres too
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
+  DDGI_ASSIGN_OR_RETURN(auto tracer,
+                        PathTracer::create(context, *gpu_scene, context.default_backend()));
+  auto accumulate = [&](PathTraceView view, uint32_t spp) -> Status {
+    PathTraceSettings settings = pt;
+    settings.view = view;
+    for (uint32_t done = 0; done < spp;) {
+      const uint32_t batch = std::min(64u, spp - done);
+      DDGI_TRY(tracer->accumulate(settings, batch));
+      done += batch;
+    }
+    return ok_status();
+  };
+  // The full reference first: it sets the exposure both are tone-mapped with.
+  DDGI_TRY(accumulate(PathTraceView::kFull, options.full_spp));
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
+  pair.exposure = options.exposure ? options.exposure(linear.radiance) : 1.0f;
+  DDGI_ASSIGN_OR_RETURN(pair.full, tracer->read(Tonemap::kAces, pair.exposure));
+  DDGI_TRY(accumulate(options.second_view, options.second_spp));
+  DDGI_ASSIGN_OR_RETURN(pair.second, tracer->read(Tonemap::kAces, pair.exposure));
+  return pair;
 }
 
 }  // namespace ddgi

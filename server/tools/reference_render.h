@@ -1,13 +1,17 @@
-// ddgi-render --reference: the path-traced ground truth of a view, written like a frame.
+// The path-traced ground truth as the tools take it: ddgi-render --reference (a view written
+// like a frame, with progress), and the pair of references ddgi-eval and ddgi-shadow-eval score
+// frames against.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/result.h"
 #include "gpu_scene/frame_types.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/path_tracer.h"
+#include "scene/scene.h"
 #include "vk/context.h"
 
 namespace ddgi {
@@ -25,5 +29,24 @@ struct ReferenceOptions {
 // seconds, then writes the image and prints a summary line.
 Status render_reference(vk::Context& context, GpuScene& scene, vk::TraceBackend backend,
                         const ReferenceOptions& options);
+
+// Two references of one view, tone-mapped with one exposure chosen from the full image's linear
+// radiance: the full image and a second view (the field's part, or the punctual direct light).
+struct ReferencePair {
+  PathTraceSettings settings;  // of the full image; pixel centres (frames trace those too)
+  float exposure = 1.0f;
+  PathTraceImage full;
+  PathTraceImage second;
+};
+struct ReferencePairOptions {
+  uint32_t width = 480, height = 270;
+  Camera camera;
+  uint32_t full_spp = 1024;
+  PathTraceView second_view = PathTraceView::kFieldIndirect;
+  uint32_t second_spp = 1024;
+  float (*exposure)(const std::vector<float>& radiance) = nullptr;  // from the full image
+};
+Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
+                                     const ReferencePairOptions& options);
 
 }  // namespace ddgi

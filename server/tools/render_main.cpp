@@ -173,12 +173,8 @@ Result<RenderJob> parse_job(const Flags& flags) {
 
 Status write_frame(const RenderJob& job, const FrameResult& frame) {
   if (job.format == encode::ImageFormat::kExr) {
-    encode::ImageRgbF hdr{frame.width, frame.height, {}};
-    hdr.rgb.reserve(size_t(frame.width) * frame.height * 3);
-    for (size_t i = 0; i < size_t(frame.width) * frame.height; ++i) {
-      hdr.rgb.insert(hdr.rgb.end(), &frame.radiance[i * 4], &frame.radiance[i * 4 + 3]);
-    }
-    return encode::write_image(job.out_path, hdr);
+    return encode::write_image(job.out_path,
+                               encode::rgb_from_rgba(frame.width, frame.height, frame.radiance));
   }
   encode::WriteOptions write_options;
   write_options.jpeg_quality = static_cast<int>(job.quality);

@@ -24,6 +24,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/reference_render.h"
 #include "tools/shadow_plot.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
@@ -200,42 +201,21 @@ Result<SceneArg> parse_scene_arg(const std::string& text) {
   return SceneArg{text.substr(0, at), region};
 }
 
-// The path-traced references of a scene's default view: the full image first, which sets the
-// exposure of both, then the punctual direct light that the direct modes approximate.
-struct References {
-  PathTraceSettings settings;
-  float exposure = 1.0f;
-  PathTraceImage full, direct;
-};
-
-Result<References> make_references(vk::Context& context, const Scene& scene, const Options& o,
-                                   const std::string& stem) {
-  References refs;
-  PathTraceSettings& pt = refs.settings;
-  pt.width = o.width;
-  pt.height = o.height;
-  pt.camera = default_camera(scene);
-  pt.jitter = false;  // frames trace pixel centres too
-  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
-  DDGI_ASSIGN_OR_RETURN(auto tracer,
-                        PathTracer::create(context, *gpu_scene, context.default_backend()));
-  auto accumulate = [&](PathTraceView view, uint32_t spp) -> Status {
-    pt.view = view;
-    for (uint32_t done = 0; done < spp;) {
-      const uint32_t batch = std::min(64u, spp - done);
-      DDGI_TRY(tracer->accumulate(pt, batch));
-      done += batch;
-    }
-    return ok_status();
-  };
-  DDGI_TRY(accumulate(PathTraceView::kFull, o.full_spp));
-  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
-  refs.exposure = reference_exposure(linear.radiance);
-  DDGI_ASSIGN_OR_RETURN(refs.full, tracer->read(Tonemap::kAces, refs.exposure));
-  DDGI_TRY(accumulate(PathTraceView::kPunctualDirect, o.spp));
-  DDGI_ASSIGN_OR_RETURN(refs.direct, tracer->read(Tonemap::kAces, refs.exposure));
+// The path-traced references of a scene's default view: the full image, which sets the
+// exposure of both, and the punctual direct light that the direct modes approximate.
+Result<ReferencePair> make_references(vk::Context& context, const Scene& scene, const Options& o,
+                                      const std::string& stem) {
+  ReferencePairOptions options;
+  options.width = o.width;
+  options.height = o.height;
+  options.camera = default_camera(scene);
+  options.full_spp = o.full_spp;
+  options.second_view = PathTraceView::kPunctualDirect;
+  options.second_spp = o.spp;
+  options.exposure = reference_exposure;
+  DDGI_ASSIGN_OR_RETURN(ReferencePair refs, reference_pair(context, scene, options));
   DDGI_TRY(write_png(o.out_dir, stem + ".reference", o.width, o.height, refs.full.ldr));
-  DDGI_TRY(write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, refs.direct.ldr));
+  DDGI_TRY(write_png(o.out_dir, stem + ".reference-direct", o.width, o.height, refs.second.ldr));
   return refs;
 }
 
@@ -323,14 +303,14 @@ Status time_modes(const std::vector<ModeRun>& runs, std::vector<Live>& live, con
 }
 
 // A mode's table row, pass-table row and plot point.
-Status report_mode(const ModeRun& run, Live& l, const References& refs, const Options& o,
+Status report_mode(const ModeRun& run, Live& l, const ReferencePair& refs, const Options& o,
                    const std::string& stem, FrameSettings settings, std::vector<PassRow>& pass_rows,
                    PlotSeries& series) {
   settings.direct_mode = run.mode;
   settings.view = View::kDirect;
   DDGI_ASSIGN_OR_RETURN(const auto update, l.gi->frame_update(run.mode, {}));
   DDGI_ASSIGN_OR_RETURN(const FrameResult direct, l.renderer->render(settings, update));
-  DDGI_ASSIGN_OR_RETURN(const Scores d, score(refs.direct.ldr, direct.ldr, o.width, o.height));
+  DDGI_ASSIGN_OR_RETURN(const Scores d, score(refs.second.ldr, direct.ldr, o.width, o.height));
   DDGI_ASSIGN_OR_RETURN(const Scores f, score(refs.full.ldr, l.full.ldr, o.width, o.height));
   std::string grid = "-", label = run.name == "shadow-rays" ? "rays" : "none";
   if (run.has_shadow_field) {
@@ -370,7 +350,7 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
                       std::vector<PassRow>& pass_rows, ScatterPlot& plot) {
   DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(arg.path));
   const std::string stem = tools::file_stem(arg.path);
-  DDGI_ASSIGN_OR_RETURN(const References refs, make_references(context, scene, o, stem));
+  DDGI_ASSIGN_OR_RETURN(const ReferencePair refs, make_references(context, scene, o, stem));
   DDGI_ASSIGN_OR_RETURN(const std::vector<ModeRun> runs, mode_runs(scene, arg, o));
   // Every mode's stack and renderer first, then their frames in turn (time_modes).
   std::vector<Live> live;

@@ -5,6 +5,7 @@
 
 #include "encode/jpeg.h"
 #include "gi/field_param_table.h"
+#include "gi/gi_stack.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
@@ -190,23 +191,25 @@ TEST_F(E2eTest, StreamedFrameMatchesRenderer) {
   vk::Context& gpu = service_context();
   auto scene = load_scene(std::string(DDGI_TEST_SCENE_ROOT) + "/cornell_box.gltf");
   ASSERT_TRUE(scene.ok()) << scene.error().message;
-  IrradianceFieldParams params = default_field_params(*scene);
-  ASSERT_TRUE(
-      apply_field_assignments(params, {"counts=2,2,2", "rays_per_probe=16", "fixed_rays=8"}).ok());
+  auto options = fitted_gi_options(*scene, true, DirectMode::kTracedShadows,
+                                   {"counts=2,2,2", "rays_per_probe=16", "fixed_rays=8"}, {},
+                                   gpu.default_backend());
+  ASSERT_TRUE(options.ok()) << options.error().message;
   encode::ImageRgba8 reference;
   {
-    auto gpu_scene = GpuScene::create(gpu, *scene);
-    ASSERT_TRUE(gpu_scene.ok());
-    auto field = IrradianceField::create(gpu, **gpu_scene, params, gpu.default_backend());
-    ASSERT_TRUE(field.ok());
-    ASSERT_TRUE((*field)->warm_up(kWarmup, DirectMode::kTracedShadows).ok());
-    auto renderer = Renderer::create(gpu, **gpu_scene, field->get(), gpu.default_backend());
+    auto gi = GiStack::create(gpu, *scene, *options);
+    ASSERT_TRUE(gi.ok()) << gi.error().message;
+    ASSERT_TRUE((*gi)->warm_up(kWarmup).ok());
+    auto renderer = Renderer::create(gpu, (*gi)->scene(), (*gi)->field(), gpu.default_backend());
     ASSERT_TRUE(renderer.ok());
     FrameSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.camera = default_camera(*scene);
-    auto rendered = (*renderer)->render(settings);
+    // One update before the frame, as the session's loop records it.
+    auto update = (*gi)->frame_update(settings.direct_mode, {});
+    ASSERT_TRUE(update.ok()) << update.error().message;
+    auto rendered = (*renderer)->render(settings, *update);
     ASSERT_TRUE(rendered.ok());
     reference = {kWidth, kHeight, rendered->ldr};
   }
