@@ -116,6 +116,20 @@ struct FieldDispatch {
   uint pad0;
 };
 
+// The query kernel (tests, the RPC, scripted checks): field irradiance at given points.
+DDGI_CONST uint kFieldQuerySet = 1;
+DDGI_CONST uint kFieldQueryBindingQueries = 0;  // FieldQuery per point
+DDGI_CONST uint kFieldQueryBindingAnswers = 1;  // vec4 per point: irradiance M (rgb), 0
+
+struct FieldQuery {
+  vec3 position;
+  float pad0;
+  vec3 normal;     // unit
+  float pad1;
+  vec3 to_viewer;  // unit; the self-shadow bias leans this way
+  float pad2;
+};
+
 DDGI_NAMESPACE_END
 
 #endif

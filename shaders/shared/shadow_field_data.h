@@ -118,6 +118,10 @@ struct ShadowDispatch {
 };
 
 // The query kernel (tests, the eval tool): field and traced visibility at given points.
+DDGI_CONST uint kShadowQuerySet = 1;
+DDGI_CONST uint kShadowQueryBindingQueries = 0;  // ShadowQuery per point
+DDGI_CONST uint kShadowQueryBindingAnswers = 1;  // ShadowAnswer per point
+
 struct ShadowQuery {
   vec3 position;
   uint traced_samples;  // shadow rays per light for the traced answer (spherical lights)
