@@ -527,20 +527,9 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
   atlas.width = image.width();
   atlas.height = image.height();
   atlas.channels = channels;
-  const VkDeviceSize bytes = VkDeviceSize(atlas.width) * atlas.height * channels * sizeof(float);
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer readback,
-                        vk::Buffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "atlas readback"));
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vk::barrier_all(cmd);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {atlas.width, atlas.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_GENERAL, readback.handle(), 1,
-                           &copy);
-  }));
   atlas.texels.resize(size_t(atlas.width) * atlas.height * channels);
-  std::memcpy(atlas.texels.data(), readback.mapped(), bytes);
+  DDGI_TRY(vk::download_image(context_, image, atlas.texels.data(),
+                              atlas.texels.size() * sizeof(float)));
   return atlas;
 }
 
