@@ -8,7 +8,10 @@
 #include <cstdio>
 #include <fstream>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -86,162 +89,222 @@ v1::Camera yawed(const v1::Camera& camera, double degrees) {
   return out;
 }
 
-struct LatencyProbe {
-  uint64_t seq = 0;
-  Clock::time_point sent;
-  bool seen = false;
-};
-
 double percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   return values[std::min(values.size() - 1, size_t(p * double(values.size() - 1) + 0.5))];
 }
 
-int stream(Cli& cli) {
-  v1::StreamFramesRequest request;
-  if (Status status = fill_view_request(cli.flags, request); !status.ok()) {
-    return report(status.error());
-  }
-  DDGI_CLI_TRY(const int64_t max_frames, cli.flags.get_int("frames", 10, 1, 1ll << 40));
-  DDGI_CLI_TRY(const double max_seconds, cli.flags.get_double("seconds", 0.0, 0.0, 1e7));
-  DDGI_CLI_TRY(const double max_fps, cli.flags.get_double("max-fps", 0.0, 0.0, 1e6));
+struct StreamOptions {
+  int64_t max_frames = 0;
+  double max_seconds = 0.0;  // 0: no time limit
+  std::string out;           // the last frame
+  std::string out_dir;       // every frame
+  int64_t camera_moves = 0;
+  double move_interval = 0.0;
+  int64_t stall_after = -1;  // stop reading after this frame for stall_seconds
+  double stall_seconds = 0.0;
+};
+
+// The stream command's flags: the request, and the options of the reading side.
+Result<StreamOptions> stream_options(const Flags& flags, v1::StreamFramesRequest& request) {
+  DDGI_TRY(fill_view_request(flags, request));
+  StreamOptions o;
+  DDGI_ASSIGN_OR_RETURN(o.max_frames, flags.get_int("frames", 10, 1, 1ll << 40));
+  DDGI_ASSIGN_OR_RETURN(o.max_seconds, flags.get_double("seconds", 0.0, 0.0, 1e7));
+  DDGI_ASSIGN_OR_RETURN(const double max_fps, flags.get_double("max-fps", 0.0, 0.0, 1e6));
   request.set_max_fps(float(max_fps));
-  DDGI_CLI_TRY(const std::string out, cli.flags.get_string("out", ""));
-  DDGI_CLI_TRY(const std::string out_dir, cli.flags.get_string("out-dir", ""));
-  DDGI_CLI_TRY(const int64_t camera_moves, cli.flags.get_int("camera-moves", 0, 0, 100000));
-  DDGI_CLI_TRY(const double move_interval, cli.flags.get_double("move-interval", 0.5, 0.001, 3600));
-  DDGI_CLI_TRY(const int64_t stall_after, cli.flags.get_int("stall-after", -1, -1, 1ll << 40));
-  DDGI_CLI_TRY(const double stall_seconds, cli.flags.get_double("stall-seconds", 0.0, 0.0, 3600));
+  DDGI_ASSIGN_OR_RETURN(o.out, flags.get_string("out", ""));
+  DDGI_ASSIGN_OR_RETURN(o.out_dir, flags.get_string("out-dir", ""));
+  DDGI_ASSIGN_OR_RETURN(o.camera_moves, flags.get_int("camera-moves", 0, 0, 100000));
+  DDGI_ASSIGN_OR_RETURN(o.move_interval, flags.get_double("move-interval", 0.5, 0.001, 3600));
+  DDGI_ASSIGN_OR_RETURN(o.stall_after, flags.get_int("stall-after", -1, -1, 1ll << 40));
+  DDGI_ASSIGN_OR_RETURN(o.stall_seconds, flags.get_double("stall-seconds", 0.0, 0.0, 3600));
+  return o;
+}
 
-  auto context = cli.context(false);  // a stream lives until we have what we want
-  auto reader = cli.stub->StreamFrames(context.get(), request);
-  const auto start = Clock::now();
+// --camera-moves: SetCamera calls on a thread beside the stream reader, turning the camera of
+// the first frame back and forth. Each move remembers when it was sent, so the reader can time
+// the first frame that shows it.
+class CameraMover {
+ public:
+  CameraMover(const Cli& cli, int64_t moves, double interval) : cli_(cli) {
+    if (moves > 0) thread_ = std::thread([this, moves, interval] { run(moves, interval); });
+  }
+  ~CameraMover() { finish(); }
+  CameraMover(const CameraMover&) = delete;
+  CameraMover& operator=(const CameraMover&) = delete;
 
-  // Camera moves run beside the reader: they need the view id and camera of the first frame.
-  std::mutex mutex;
-  std::condition_variable first_frame;
-  std::optional<v1::Frame> first;
-  std::vector<LatencyProbe> probes;
-  std::atomic<bool> done{false};
-  std::string move_error;
-  std::thread mover;
-  if (camera_moves > 0) {
-    mover = std::thread([&] {
-      v1::Frame initial;
-      {
-        std::unique_lock<std::mutex> lock(mutex);
-        first_frame.wait(lock, [&] { return first.has_value() || done.load(); });
-        if (!first) return;
-        initial = *first;
+  // The reader got `frame` at `now`: the first frame starts the moves; adds the latency (ms)
+  // of every move this frame is the first to show to `latencies`.
+  void on_frame(const v1::Frame& frame, Clock::time_point now, std::vector<double>& latencies) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!first_) {
+      first_ = frame;
+      first_frame_.notify_all();
+    }
+    for (Probe& probe : probes_) {
+      if (!probe.seen && probe.seq <= frame.last_command_seq()) {
+        probe.seen = true;
+        latencies.push_back(std::chrono::duration<double, std::milli>(now - probe.sent).count());
       }
-      for (int64_t i = 0; i < camera_moves && !done; ++i) {
-        std::this_thread::sleep_for(std::chrono::duration<double>(move_interval));
-        v1::SetCameraRequest move;
-        move.set_session_id(initial.session_id());
-        move.set_view_id(initial.view_id());
-        *move.mutable_camera() = yawed(initial.camera(), (i % 2 == 0) ? 2.0 : 0.0);
-        v1::ViewInfo reply;
-        auto move_context = cli.context();
-        const auto sent = Clock::now();
-        const grpc::Status status = cli.stub->SetCamera(move_context.get(), move, &reply);
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!status.ok()) {
-          move_error = status.error_message();
-          return;
-        }
-        probes.push_back({reply.command_seq(), sent, false});
-      }
-    });
+    }
   }
 
-  v1::Frame frame, last;
+  // Stops the moves and waits for the thread; the error of the move that failed, if one did.
+  std::string finish() {
+    done_ = true;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      first_frame_.notify_all();
+    }
+    if (thread_.joinable()) thread_.join();
+    return error_;
+  }
+
+ private:
+  struct Probe {
+    uint64_t seq = 0;
+    Clock::time_point sent;
+    bool seen = false;
+  };
+
+  void run(int64_t moves, double interval) {
+    v1::Frame initial;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      first_frame_.wait(lock, [&] { return first_.has_value() || done_.load(); });
+      if (!first_) return;
+      initial = *first_;
+    }
+    for (int64_t i = 0; i < moves && !done_; ++i) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(interval));
+      v1::SetCameraRequest move;
+      move.set_session_id(initial.session_id());
+      move.set_view_id(initial.view_id());
+      *move.mutable_camera() = yawed(initial.camera(), (i % 2 == 0) ? 2.0 : 0.0);
+      v1::ViewInfo reply;
+      auto context = cli_.context();
+      const auto sent = Clock::now();
+      const grpc::Status status = cli_.stub->SetCamera(context.get(), move, &reply);
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!status.ok()) {
+        error_ = status.error_message();
+        return;
+      }
+      probes_.push_back({reply.command_seq(), sent, false});
+    }
+  }
+
+  const Cli& cli_;
+  std::mutex mutex_;
+  std::condition_variable first_frame_;
+  std::optional<v1::Frame> first_;
+  std::vector<Probe> probes_;
+  std::atomic<bool> done_{false};
+  std::string error_;
+  std::thread thread_;
+};
+
+// What the reader saw.
+struct StreamTotals {
   int64_t count = 0;
-  double gpu_ms = 0.0, encode_ms = 0.0, bytes = 0.0;
-  std::vector<double> latencies;
+  double gpu_ms = 0.0;
+  double encode_ms = 0.0;
+  double bytes = 0.0;
+  std::vector<double> latencies;  // ms, of the camera moves measured
+  v1::Frame last;
   bool server_ended = false;
-  while (count < max_frames) {
-    if (!reader->Read(&frame)) {
-      server_ended = true;
+};
+
+// Reads frames until --frames or --seconds, or until the server ends the stream.
+Status read_stream(grpc::ClientReader<v1::Frame>& reader, const StreamOptions& o,
+                   Clock::time_point start, CameraMover& mover, StreamTotals& totals) {
+  v1::Frame frame;
+  while (totals.count < o.max_frames) {
+    if (!reader.Read(&frame)) {
+      totals.server_ended = true;
       break;
     }
     const auto now = Clock::now();
-    ++count;
-    gpu_ms += frame.gpu_ms();
-    encode_ms += frame.encode_ms();
-    bytes += double(frame.jpeg().size());
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!first) {
-        first = frame;
-        first_frame.notify_all();
-      }
-      for (LatencyProbe& probe : probes) {
-        if (!probe.seen && probe.seq <= frame.last_command_seq()) {
-          probe.seen = true;
-          latencies.push_back(std::chrono::duration<double, std::milli>(now - probe.sent).count());
-        }
-      }
-    }
-    if (!out_dir.empty()) {
+    ++totals.count;
+    totals.gpu_ms += frame.gpu_ms();
+    totals.encode_ms += frame.encode_ms();
+    totals.bytes += double(frame.jpeg().size());
+    mover.on_frame(frame, now, totals.latencies);
+    if (!o.out_dir.empty()) {
       char name[64];
-      std::snprintf(name, sizeof(name), "/frame_%06lld.jpg", static_cast<long long>(count));
-      if (Status saved = write_bytes(out_dir + name, frame.jpeg()); !saved.ok()) {
-        return report(saved.error());
-      }
+      std::snprintf(name, sizeof(name), "/frame_%06lld.jpg", static_cast<long long>(totals.count));
+      DDGI_TRY(write_bytes(o.out_dir + name, frame.jpeg()));
     }
-    last = std::move(frame);
-    if (count == stall_after) {
+    totals.last = std::move(frame);
+    if (totals.count == o.stall_after) {
       // Stop reading for a while, as a slow client would: the server must drop, not buffer.
-      std::this_thread::sleep_for(std::chrono::duration<double>(stall_seconds));
+      std::this_thread::sleep_for(std::chrono::duration<double>(o.stall_seconds));
     }
-    if (max_seconds > 0.0 && std::chrono::duration<double>(now - start).count() >= max_seconds) {
+    if (o.max_seconds > 0.0 &&
+        std::chrono::duration<double>(now - start).count() >= o.max_seconds) {
       break;
     }
   }
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  done = true;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    first_frame.notify_all();
+  return ok_status();
+}
+
+nlohmann::json stream_summary(const StreamTotals& t, double seconds, int64_t camera_moves) {
+  const double count = double(t.count);
+  nlohmann::json summary;
+  summary["frames"] = t.count;
+  summary["seconds"] = seconds;
+  summary["fps"] = seconds > 0 ? count / seconds : 0.0;
+  summary["ended_by"] = t.server_ended ? "server" : "client";
+  summary["view_id"] = t.last.view_id();
+  summary["width"] = t.last.width();
+  summary["height"] = t.last.height();
+  summary["frames_dropped"] = t.last.frames_dropped();
+  summary["last_frame_index"] = t.last.frame_index();
+  summary["gpu_ms_mean"] = t.count ? t.gpu_ms / count : 0.0;
+  summary["encode_ms_mean"] = t.count ? t.encode_ms / count : 0.0;
+  summary["jpeg_bytes_mean"] = t.count ? t.bytes / count : 0.0;
+  if (camera_moves > 0) {
+    double sum = 0.0;
+    for (double l : t.latencies) sum += l;
+    const double mean = t.latencies.empty() ? 0.0 : sum / double(t.latencies.size());
+    summary["latency_ms"] = {{"moves", camera_moves},
+                             {"measured", t.latencies.size()},
+                             {"mean", mean},
+                             {"p50", percentile(t.latencies, 0.5)},
+                             {"p90", percentile(t.latencies, 0.9)},
+                             {"max", percentile(t.latencies, 1.0)}};
   }
-  if (mover.joinable()) mover.join();
+  return summary;
+}
+
+int stream(Cli& cli) {
+  v1::StreamFramesRequest request;
+  DDGI_CLI_TRY(const StreamOptions options, stream_options(cli.flags, request));
+  auto context = cli.context(false);  // a stream lives until we have what we want
+  auto reader = cli.stub->StreamFrames(context.get(), request);
+  const auto start = Clock::now();
+  CameraMover mover(cli, options.camera_moves, options.move_interval);
+  StreamTotals totals;
+  if (Status read = read_stream(*reader, options, start, mover, totals); !read.ok()) {
+    return report(read.error());
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::string move_error = mover.finish();
   // A client ends a stream by cancelling it; the server ends it with a status.
-  if (!server_ended) context->TryCancel();
+  if (!totals.server_ended) context->TryCancel();
   const grpc::Status status = reader->Finish();
-  const bool cancelled_by_us = !server_ended;
-  if (server_ended && !status.ok()) return report(status);
+  if (totals.server_ended && !status.ok()) return report(status);
   if (!move_error.empty()) {
     return report(grpc::Status(grpc::StatusCode::UNKNOWN, "camera move: " + move_error));
   }
-  if (!out.empty() && count > 0) {
-    if (Status saved = save_frame(last, out); !saved.ok()) return report(saved.error());
+  if (!options.out.empty() && totals.count > 0) {
+    if (Status saved = save_frame(totals.last, options.out); !saved.ok()) {
+      return report(saved.error());
+    }
   }
-
-  nlohmann::json summary;
-  summary["frames"] = count;
-  summary["seconds"] = seconds;
-  summary["fps"] = seconds > 0 ? double(count) / seconds : 0.0;
-  summary["ended_by"] = cancelled_by_us ? "client" : "server";
-  summary["view_id"] = last.view_id();
-  summary["width"] = last.width();
-  summary["height"] = last.height();
-  summary["frames_dropped"] = last.frames_dropped();
-  summary["last_frame_index"] = last.frame_index();
-  summary["gpu_ms_mean"] = count ? gpu_ms / double(count) : 0.0;
-  summary["encode_ms_mean"] = count ? encode_ms / double(count) : 0.0;
-  summary["jpeg_bytes_mean"] = count ? bytes / double(count) : 0.0;
-  if (camera_moves > 0) {
-    double sum = 0.0;
-    for (double l : latencies) sum += l;
-    summary["latency_ms"] = {{"moves", camera_moves},
-                             {"measured", latencies.size()},
-                             {"mean", latencies.empty() ? 0.0 : sum / double(latencies.size())},
-                             {"p50", percentile(latencies, 0.5)},
-                             {"p90", percentile(latencies, 0.9)},
-                             {"max", percentile(latencies, 1.0)}};
-  }
-  std::printf("%s\n", summary.dump(2).c_str());
+  std::printf("%s\n", stream_summary(totals, seconds, options.camera_moves).dump(2).c_str());
   return 0;
 }
 

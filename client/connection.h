@@ -9,6 +9,7 @@
 
 #include "core/flags.h"
 #include "core/result.h"
+#include "rpc/status_code_name.h"  // status_code_name(), for every client
 
 namespace ddgi::client {
 
@@ -31,8 +32,5 @@ Result<ConnectionOptions> connection_options(const Flags& flags);
 std::shared_ptr<grpc::Channel> make_channel(const ConnectionOptions& options);
 // Adds the token and, when `deadline` is set, the deadline.
 void prepare(grpc::ClientContext& context, const ConnectionOptions& options, bool deadline = true);
-
-// "NOT_FOUND" etc.
-const char* status_code_name(grpc::StatusCode code);
 
 }  // namespace ddgi::client

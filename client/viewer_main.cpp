@@ -6,9 +6,12 @@
 //   camera again, Escape: quit.
 #include <SDL.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "connection.h"
@@ -125,7 +128,21 @@ Status save_screenshot(SDL_Renderer* renderer, const encode::ImageRgba8& fallbac
   return encode::write_image(path, shot);
 }
 
-Status run(int argc, char** argv) {
+struct ViewerOptions {
+  ConnectionOptions connection;
+  std::string session;  // empty: create one on `scene`
+  std::string scene;
+  int64_t width = 0;
+  int64_t height = 0;
+  double max_fps = 0.0;
+  int64_t quality = 0;
+  int64_t max_frames = 0;  // 0: until the window closes
+  std::string screenshot;
+  double speed = 0.0;
+};
+
+// The flags as options; nullopt after --help (the usage is printed).
+Result<std::optional<ViewerOptions>> parse_options(int argc, char** argv) {
   std::vector<std::string> known = connection_flags();
   for (const char* name : {"session", "scene", "width", "height", "max-fps", "quality", "frames",
                            "screenshot", "speed"}) {
@@ -134,170 +151,246 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv, known, {"tls", "help"}));
   if (flags.has("help")) {
     std::printf("%s\n%s", kUsage, connection_usage());
+    return std::optional<ViewerOptions>();
+  }
+  ViewerOptions o;
+  DDGI_ASSIGN_OR_RETURN(o.connection, connection_options(flags));
+  DDGI_ASSIGN_OR_RETURN(o.session, flags.get_string("session", ""));
+  DDGI_ASSIGN_OR_RETURN(o.scene, flags.get_string("scene", "cornell_box"));
+  DDGI_ASSIGN_OR_RETURN(o.width, flags.get_int("width", 640, 1, 16384));
+  DDGI_ASSIGN_OR_RETURN(o.height, flags.get_int("height", 480, 1, 16384));
+  DDGI_ASSIGN_OR_RETURN(o.max_fps, flags.get_double("max-fps", 30, 0, 1000));
+  DDGI_ASSIGN_OR_RETURN(o.quality, flags.get_int("quality", 80, 1, 100));
+  DDGI_ASSIGN_OR_RETURN(o.max_frames, flags.get_int("frames", 0, 0, 1ll << 40));
+  DDGI_ASSIGN_OR_RETURN(o.screenshot, flags.get_string("screenshot", ""));
+  DDGI_ASSIGN_OR_RETURN(o.speed, flags.get_double("speed", 1.0, 1e-6, 1e6));
+  if (!o.screenshot.empty()) DDGI_TRY(encode::format_from_path(o.screenshot));
+  return std::optional<ViewerOptions>(std::move(o));
+}
+
+// A new session on `scene`; its id.
+Result<std::string> create_session(const ConnectionOptions& connection, const std::string& scene) {
+  auto stub = v1::RenderService::NewStub(make_channel(connection));
+  grpc::ClientContext context;
+  prepare(context, connection);
+  v1::CreateSessionRequest request;
+  request.mutable_scene()->set_name(scene);
+  v1::SessionInfo info;
+  const grpc::Status status = stub->CreateSession(&context, request, &info);
+  if (!status.ok()) {
+    return unavailable(std::string("CreateSession: ") + status_code_name(status.error_code()) +
+                       ": " + status.error_message());
+  }
+  return info.session_id();
+}
+
+// The SDL window, its renderer and the texture frames are drawn through.
+class ViewerWindow {
+ public:
+  ViewerWindow() = default;
+  ViewerWindow(const ViewerWindow&) = delete;
+  ViewerWindow& operator=(const ViewerWindow&) = delete;
+  ~ViewerWindow() {
+    if (texture_) SDL_DestroyTexture(texture_);
+    if (renderer_) SDL_DestroyRenderer(renderer_);
+    if (window_) SDL_DestroyWindow(window_);
+    if (sdl_) SDL_Quit();
+  }
+
+  Status open(int width, int height) {
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+      return unavailable(std::string("SDL_Init: ") + SDL_GetError());
+    }
+    sdl_ = true;
+    window_ = SDL_CreateWindow("ddgi-viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
+                               width, height, SDL_WINDOW_RESIZABLE);
+    if (!window_) return unavailable(std::string("SDL_CreateWindow: ") + SDL_GetError());
+    renderer_ = SDL_CreateRenderer(window_, -1, 0);
+    if (!renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    if (!renderer_) return unavailable(std::string("SDL_CreateRenderer: ") + SDL_GetError());
     return ok_status();
   }
-  DDGI_ASSIGN_OR_RETURN(const ConnectionOptions connection, connection_options(flags));
-  DDGI_ASSIGN_OR_RETURN(std::string session, flags.get_string("session", ""));
-  DDGI_ASSIGN_OR_RETURN(const std::string scene, flags.get_string("scene", "cornell_box"));
-  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 640, 1, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 480, 1, 16384));
-  DDGI_ASSIGN_OR_RETURN(const double max_fps, flags.get_double("max-fps", 30, 0, 1000));
-  DDGI_ASSIGN_OR_RETURN(const int64_t quality, flags.get_int("quality", 80, 1, 100));
-  DDGI_ASSIGN_OR_RETURN(const int64_t max_frames, flags.get_int("frames", 0, 0, 1ll << 40));
-  DDGI_ASSIGN_OR_RETURN(const std::string screenshot, flags.get_string("screenshot", ""));
-  DDGI_ASSIGN_OR_RETURN(const double speed, flags.get_double("speed", 1.0, 1e-6, 1e6));
-  if (!screenshot.empty()) DDGI_TRY(encode::format_from_path(screenshot));
 
-  std::unique_ptr<OwnedSession> owned;
-  if (session.empty()) {
-    auto stub = v1::RenderService::NewStub(make_channel(connection));
-    grpc::ClientContext context;
-    prepare(context, connection);
-    v1::CreateSessionRequest request;
-    request.mutable_scene()->set_name(scene);
-    v1::SessionInfo info;
-    const grpc::Status status = stub->CreateSession(&context, request, &info);
-    if (!status.ok()) {
-      return unavailable(std::string("CreateSession: ") + status_code_name(status.error_code()) +
-                         ": " + status.error_message());
+  // Draws `image` over the whole window, not yet presented.
+  void draw(const encode::ImageRgba8& image) {
+    if (texture_) {
+      int tw = 0, th = 0;
+      SDL_QueryTexture(texture_, nullptr, nullptr, &tw, &th);
+      if (uint32_t(tw) != image.width || uint32_t(th) != image.height) {
+        SDL_DestroyTexture(texture_);
+        texture_ = nullptr;
+      }
     }
-    session = info.session_id();
-    owned = std::make_unique<OwnedSession>(connection, session);
+    if (!texture_) {
+      texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_ABGR8888, SDL_TEXTUREACCESS_STREAMING,
+                                   int(image.width), int(image.height));
+    }
+    SDL_UpdateTexture(texture_, nullptr, image.pixels.data(), int(image.width) * 4);
+    SDL_RenderClear(renderer_);
+    SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+  }
+  void present() { SDL_RenderPresent(renderer_); }
+  SDL_Renderer* renderer() const { return renderer_; }
+
+ private:
+  bool sdl_ = false;
+  SDL_Window* window_ = nullptr;
+  SDL_Renderer* renderer_ = nullptr;
+  SDL_Texture* texture_ = nullptr;
+};
+
+// The camera and what the user does to it between two frames.
+struct Controls {
+  std::optional<CameraState> camera;        // known from the first frame on
+  std::optional<CameraState> first_camera;  // R goes back to it
+  bool running = true;
+  bool dragging = false;
+  Clock::time_point last_tick = Clock::now();
+
+  // Handles the pending window events; returns whether the camera changed.
+  bool handle_events() {
+    bool changed = false;
+    SDL_Event event;
+    while (SDL_WaitEventTimeout(&event, 5)) {
+      if (event.type == SDL_QUIT) running = false;
+      if (event.type == SDL_KEYDOWN && event.key.keysym.sym == SDLK_ESCAPE) running = false;
+      if (event.type == SDL_KEYDOWN && event.key.keysym.sym == SDLK_r && first_camera) {
+        camera = first_camera;
+        changed = true;
+      }
+      if (event.type == SDL_MOUSEBUTTONDOWN && event.button.button == SDL_BUTTON_LEFT) {
+        dragging = true;
+      }
+      if (event.type == SDL_MOUSEBUTTONUP && event.button.button == SDL_BUTTON_LEFT) {
+        dragging = false;
+      }
+      if (event.type == SDL_MOUSEMOTION && dragging && camera) {
+        camera->yaw += event.motion.xrel * 0.005;
+        camera->pitch = std::clamp(camera->pitch - event.motion.yrel * 0.005, -1.5, 1.5);
+        changed = true;
+      }
+      if (!running) break;
+    }
+    return changed;
   }
 
-  if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-    return unavailable(std::string("SDL_Init: ") + SDL_GetError());
+  // Held keys move continuously, scaled by the time since the last tick (`now`); returns
+  // whether the camera moved.
+  bool apply_held_keys(Clock::time_point now, double speed) {
+    const double dt = std::min(0.1, std::chrono::duration<double>(now - last_tick).count());
+    last_tick = now;
+    const Uint8* keys = SDL_GetKeyboardState(nullptr);
+    if (!camera) return false;
+    const double step = speed * dt, turn = 1.5 * dt;
+    const double forward = (keys[SDL_SCANCODE_W] - keys[SDL_SCANCODE_S]) * step;
+    const double right = (keys[SDL_SCANCODE_D] - keys[SDL_SCANCODE_A]) * step;
+    const double up = (keys[SDL_SCANCODE_E] - keys[SDL_SCANCODE_Q]) * step;
+    const double yaw = (keys[SDL_SCANCODE_RIGHT] - keys[SDL_SCANCODE_LEFT]) * turn;
+    const double pitch = (keys[SDL_SCANCODE_UP] - keys[SDL_SCANCODE_DOWN]) * turn;
+    if (forward == 0 && right == 0 && up == 0 && yaw == 0 && pitch == 0) return false;
+    camera->move(forward, right, up);
+    camera->yaw += yaw;
+    camera->pitch = std::clamp(camera->pitch + pitch, -1.5, 1.5);
+    return true;
   }
-  SDL_Window* window =
-      SDL_CreateWindow("ddgi-viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, int(width),
-                       int(height), SDL_WINDOW_RESIZABLE);
-  if (!window) return unavailable(std::string("SDL_CreateWindow: ") + SDL_GetError());
-  SDL_Renderer* renderer = SDL_CreateRenderer(window, -1, 0);
-  if (!renderer) renderer = SDL_CreateRenderer(window, -1, SDL_RENDERER_SOFTWARE);
-  if (!renderer) return unavailable(std::string("SDL_CreateRenderer: ") + SDL_GetError());
-  SDL_Texture* texture = nullptr;
+};
 
+// Frames per second over the last half second or more.
+class FpsCounter {
+ public:
+  void count(Clock::time_point now) {
+    ++frames_;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed >= 0.5) {
+      fps_ = frames_ / elapsed;
+      frames_ = 0;
+      start_ = now;
+    }
+  }
+  double fps() const { return fps_; }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  int frames_ = 0;
+  double fps_ = 0.0;
+};
+
+v1::StreamFramesRequest stream_request(const ViewerOptions& options, const std::string& session) {
   v1::StreamFramesRequest request;
   request.set_session_id(session);
-  request.mutable_settings()->set_width(uint32_t(width));
-  request.mutable_settings()->set_height(uint32_t(height));
-  request.mutable_settings()->set_jpeg_quality(uint32_t(quality));
-  request.set_max_fps(float(max_fps));
-  Status result = ok_status();
-  {
-    ViewerLink link(connection, request);
-    std::optional<CameraState> camera, first_camera;
-    encode::ImageRgba8 shown;
-    int64_t frames_shown = 0;
-    double fps = 0.0;
-    auto fps_start = Clock::now();
-    int fps_frames = 0;
-    auto last_tick = Clock::now();
-    bool running = true, dragging = false;
-    while (running) {
-      SDL_Event event;
-      bool camera_changed = false;
-      while (SDL_WaitEventTimeout(&event, 5)) {
-        if (event.type == SDL_QUIT) running = false;
-        if (event.type == SDL_KEYDOWN && event.key.keysym.sym == SDLK_ESCAPE) running = false;
-        if (event.type == SDL_KEYDOWN && event.key.keysym.sym == SDLK_r && first_camera) {
-          camera = first_camera;
-          camera_changed = true;
-        }
-        if (event.type == SDL_MOUSEBUTTONDOWN && event.button.button == SDL_BUTTON_LEFT) {
-          dragging = true;
-        }
-        if (event.type == SDL_MOUSEBUTTONUP && event.button.button == SDL_BUTTON_LEFT) {
-          dragging = false;
-        }
-        if (event.type == SDL_MOUSEMOTION && dragging && camera) {
-          camera->yaw += event.motion.xrel * 0.005;
-          camera->pitch = std::clamp(camera->pitch - event.motion.yrel * 0.005, -1.5, 1.5);
-          camera_changed = true;
-        }
-        if (!running) break;
-      }
-      // Held keys move continuously, scaled by the time since the last tick.
-      const auto now = Clock::now();
-      const double dt = std::min(0.1, std::chrono::duration<double>(now - last_tick).count());
-      last_tick = now;
-      const Uint8* keys = SDL_GetKeyboardState(nullptr);
-      if (camera) {
-        const double step = speed * dt, turn = 1.5 * dt;
-        const double forward = (keys[SDL_SCANCODE_W] - keys[SDL_SCANCODE_S]) * step;
-        const double right = (keys[SDL_SCANCODE_D] - keys[SDL_SCANCODE_A]) * step;
-        const double up = (keys[SDL_SCANCODE_E] - keys[SDL_SCANCODE_Q]) * step;
-        const double yaw = (keys[SDL_SCANCODE_RIGHT] - keys[SDL_SCANCODE_LEFT]) * turn;
-        const double pitch = (keys[SDL_SCANCODE_UP] - keys[SDL_SCANCODE_DOWN]) * turn;
-        if (forward != 0 || right != 0 || up != 0 || yaw != 0 || pitch != 0) {
-          camera->move(forward, right, up);
-          camera->yaw += yaw;
-          camera->pitch = std::clamp(camera->pitch + pitch, -1.5, 1.5);
-          camera_changed = true;
-        }
-      }
-      if (camera_changed && camera) link.move_camera(camera->to_camera());
+  request.mutable_settings()->set_width(uint32_t(options.width));
+  request.mutable_settings()->set_height(uint32_t(options.height));
+  request.mutable_settings()->set_jpeg_quality(uint32_t(options.quality));
+  request.set_max_fps(float(options.max_fps));
+  return request;
+}
 
-      if (auto frame = link.take_frame()) {
-        if (!camera) {
-          camera = CameraState::from(frame->info.camera());
-          first_camera = camera;
-        }
-        ++fps_frames;
-        const double elapsed = std::chrono::duration<double>(now - fps_start).count();
-        if (elapsed >= 0.5) {
-          fps = fps_frames / elapsed;
-          fps_frames = 0;
-          fps_start = now;
-        }
-        shown = std::move(frame->image);
-        const int scale = shown.width >= 480 ? 2 : 1;
-        draw_text(shown, 4 * scale, 4 * scale, stats_line(fps, link.stats(), frame->info), scale);
-        if (texture) {
-          int tw = 0, th = 0;
-          SDL_QueryTexture(texture, nullptr, nullptr, &tw, &th);
-          if (uint32_t(tw) != shown.width || uint32_t(th) != shown.height) {
-            SDL_DestroyTexture(texture);
-            texture = nullptr;
-          }
-        }
-        if (!texture) {
-          texture =
-              SDL_CreateTexture(renderer, SDL_PIXELFORMAT_ABGR8888, SDL_TEXTUREACCESS_STREAMING,
-                                int(shown.width), int(shown.height));
-        }
-        SDL_UpdateTexture(texture, nullptr, shown.pixels.data(), int(shown.width) * 4);
-        SDL_RenderClear(renderer);
-        SDL_RenderCopy(renderer, texture, nullptr, nullptr);
-        if (!screenshot.empty() && max_frames > 0 && frames_shown + 1 == max_frames) {
-          // Read back before presenting: the back buffer is defined only until then.
-          result = save_screenshot(renderer, shown, screenshot);
-        }
-        SDL_RenderPresent(renderer);
-        ++frames_shown;
-        if (max_frames > 0 && frames_shown >= max_frames) running = false;
+// Shows `session`'s frames until the window closes, the stream ends or --frames were shown,
+// sending the camera moves the user makes; prints a JSON summary at the end.
+Status show_stream(ViewerWindow& window, const ViewerOptions& options, const std::string& session) {
+  ViewerLink link(options.connection, stream_request(options, session));
+  Controls controls;
+  FpsCounter fps;
+  encode::ImageRgba8 shown;
+  int64_t frames_shown = 0;
+  Status result = ok_status();
+  const bool last_frame_screenshot = !options.screenshot.empty() && options.max_frames > 0;
+  while (controls.running) {
+    bool camera_changed = controls.handle_events();
+    const auto now = Clock::now();
+    camera_changed = controls.apply_held_keys(now, options.speed) || camera_changed;
+    if (camera_changed && controls.camera) link.move_camera(controls.camera->to_camera());
+
+    if (auto frame = link.take_frame()) {
+      if (!controls.camera) {
+        controls.camera = CameraState::from(frame->info.camera());
+        controls.first_camera = controls.camera;
       }
-      if (link.ended()) {
-        const grpc::Status status = link.status();
-        if (!status.ok()) {
-          result = unavailable(std::string("stream: ") + status_code_name(status.error_code()) +
-                               ": " + status.error_message());
-        }
-        running = false;
+      fps.count(now);
+      shown = std::move(frame->image);
+      const int scale = shown.width >= 480 ? 2 : 1;
+      draw_text(shown, 4 * scale, 4 * scale, stats_line(fps.fps(), link.stats(), frame->info),
+                scale);
+      window.draw(shown);
+      if (last_frame_screenshot && frames_shown + 1 == options.max_frames) {
+        // Read back before presenting: the back buffer is defined only until then.
+        result = save_screenshot(window.renderer(), shown, options.screenshot);
       }
+      window.present();
+      ++frames_shown;
+      if (options.max_frames > 0 && frames_shown >= options.max_frames) controls.running = false;
     }
-    if (!screenshot.empty() && (max_frames == 0 || frames_shown < max_frames) && result.ok() &&
-        !shown.pixels.empty()) {
-      result = encode::write_image(screenshot, shown);
+    if (link.ended()) {
+      const grpc::Status status = link.status();
+      if (!status.ok()) {
+        result = unavailable(std::string("stream: ") + status_code_name(status.error_code()) +
+                             ": " + status.error_message());
+      }
+      controls.running = false;
     }
-    std::printf("{\"frames_shown\": %lld, \"fps\": %.2f, \"latency_ms\": %.1f}\n",
-                static_cast<long long>(frames_shown), fps, link.stats().latency_ms);
   }
-  if (texture) SDL_DestroyTexture(texture);
-  SDL_DestroyRenderer(renderer);
-  SDL_DestroyWindow(window);
-  SDL_Quit();
+  if (!options.screenshot.empty() &&
+      (options.max_frames == 0 || frames_shown < options.max_frames) && result.ok() &&
+      !shown.pixels.empty()) {
+    result = encode::write_image(options.screenshot, shown);
+  }
+  std::printf("{\"frames_shown\": %lld, \"fps\": %.2f, \"latency_ms\": %.1f}\n",
+              static_cast<long long>(frames_shown), fps.fps(), link.stats().latency_ms);
   return result;
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(const std::optional<ViewerOptions> options, parse_options(argc, argv));
+  if (!options) return ok_status();  // --help
+  std::string session = options->session;
+  std::unique_ptr<OwnedSession> owned;
+  if (session.empty()) {
+    DDGI_ASSIGN_OR_RETURN(session, create_session(options->connection, options->scene));
+    owned = std::make_unique<OwnedSession>(options->connection, session);
+  }
+  ViewerWindow window;
+  DDGI_TRY(window.open(int(options->width), int(options->height)));
+  return show_stream(window, *options, session);
 }
 
 }  // namespace

@@ -4,26 +4,26 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <optional>
+
+#include "core/enum_names.h"
 
 namespace ddgi {
 namespace {
 std::atomic<LogLevel> g_level{LogLevel::kInfo};
 
-const char* level_name(LogLevel level) {
-  switch (level) {
-    case LogLevel::kDebug:
-      return "DEBUG";
-    case LogLevel::kInfo:
-      return "INFO";
-    case LogLevel::kWarning:
-      return "WARN";
-    case LogLevel::kError:
-      return "ERROR";
-    case LogLevel::kOff:
-      return "OFF";
-  }
-  return "?";
-}
+// What a log line shows.
+constexpr EnumName<LogLevel> kLevelLabels[] = {{LogLevel::kDebug, "DEBUG"},
+                                               {LogLevel::kInfo, "INFO"},
+                                               {LogLevel::kWarning, "WARN"},
+                                               {LogLevel::kError, "ERROR"},
+                                               {LogLevel::kOff, "OFF"}};
+// What --log-level takes.
+constexpr EnumName<LogLevel> kLevelFlags[] = {{LogLevel::kDebug, "debug"},
+                                              {LogLevel::kInfo, "info"},
+                                              {LogLevel::kWarning, "warning"},
+                                              {LogLevel::kError, "error"},
+                                              {LogLevel::kOff, "off"}};
 }  // namespace
 
 void set_log_level(LogLevel level) {
@@ -34,18 +34,9 @@ LogLevel log_level() {
 }
 
 bool parse_log_level(const std::string& text, LogLevel* level) {
-  if (text == "debug")
-    *level = LogLevel::kDebug;
-  else if (text == "info")
-    *level = LogLevel::kInfo;
-  else if (text == "warning")
-    *level = LogLevel::kWarning;
-  else if (text == "error")
-    *level = LogLevel::kError;
-  else if (text == "off")
-    *level = LogLevel::kOff;
-  else
-    return false;
+  const std::optional<LogLevel> parsed = enum_value(kLevelFlags, text);
+  if (!parsed) return false;
+  *level = *parsed;
   return true;
 }
 
@@ -60,7 +51,8 @@ void log_line(LogLevel level, const std::string& message) {
   char stamp[32];
   std::strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%S", &utc);
   // One fprintf per line keeps lines whole when several threads log.
-  std::fprintf(stderr, "%s.%03dZ %-5s %s\n", stamp, millis, level_name(level), message.c_str());
+  std::fprintf(stderr, "%s.%03dZ %-5s %s\n", stamp, millis, enum_name(kLevelLabels, level, "?"),
+               message.c_str());
 }
 
 }  // namespace ddgi

@@ -1,23 +1,23 @@
 #include "core/result.h"
 
+#include "core/enum_names.h"
+
 namespace ddgi {
+namespace {
+
+constexpr EnumName<ErrorCode> kErrorCodeNames[] = {
+    {ErrorCode::kInvalidArgument, "INVALID_ARGUMENT"},
+    {ErrorCode::kNotFound, "NOT_FOUND"},
+    {ErrorCode::kResourceExhausted, "RESOURCE_EXHAUSTED"},
+    {ErrorCode::kFailedPrecondition, "FAILED_PRECONDITION"},
+    {ErrorCode::kUnavailable, "UNAVAILABLE"},
+    {ErrorCode::kInternal, "INTERNAL"},
+};
+
+}  // namespace
 
 const char* error_code_name(ErrorCode code) {
-  switch (code) {
-    case ErrorCode::kInvalidArgument:
-      return "INVALID_ARGUMENT";
-    case ErrorCode::kNotFound:
-      return "NOT_FOUND";
-    case ErrorCode::kResourceExhausted:
-      return "RESOURCE_EXHAUSTED";
-    case ErrorCode::kFailedPrecondition:
-      return "FAILED_PRECONDITION";
-    case ErrorCode::kUnavailable:
-      return "UNAVAILABLE";
-    case ErrorCode::kInternal:
-      return "INTERNAL";
-  }
-  return "UNKNOWN";
+  return enum_name(kErrorCodeNames, code, "UNKNOWN");
 }
 
 }  // namespace ddgi

@@ -100,8 +100,11 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
            {gpu::kFieldUpdateBindingDistanceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
            {gpu::kFieldUpdateBindingProbeList}},
           1, "field update set"));
-  DDGI_ASSIGN_OR_RETURN(query_layout_,
-                        vk::DescriptorLayout::create(context_, {{0}, {1}}, 1, "field query set"));
+  DDGI_ASSIGN_OR_RETURN(
+      query_layout_,
+      vk::DescriptorLayout::create(
+          context_, {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}}, 1,
+          "field query set"));
   DDGI_ASSIGN_OR_RETURN(query_set_, query_layout_.allocate());
   DDGI_ASSIGN_OR_RETURN(sampling_set_, sampling_layout_.allocate());
   DDGI_ASSIGN_OR_RETURN(update_set_, update_layout_.allocate());
@@ -499,29 +502,24 @@ Status IrradianceField::warm_up(uint32_t count, DirectMode direct_mode) {
 }
 
 Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries) {
-  struct GpuQuery {
-    glm::vec3 position;
-    float pad0;
-    glm::vec3 normal;
-    float pad1;
-    glm::vec3 to_viewer;
-    float pad2;
-  };
-  std::vector<GpuQuery> input;
+  std::vector<gpu::FieldQuery> input;
   for (const IrradianceQuery& q : queries) {
     input.push_back(
         {q.position, 0.0f, glm::normalize(q.normal), 0.0f, glm::normalize(q.to_viewer), 0.0f});
   }
   if (input.empty()) return std::vector<glm::vec3>{};
-  DDGI_ASSIGN_OR_RETURN(
-      vk::Buffer in,
-      vk::upload_vector<GpuQuery>(context_, input, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "queries"));
+  DDGI_ASSIGN_OR_RETURN(vk::Buffer in,
+                        vk::upload_vector<gpu::FieldQuery>(
+                            context_, input, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "queries"));
   DDGI_ASSIGN_OR_RETURN(
       vk::Buffer out,
       vk::Buffer::create(context_, input.size() * sizeof(glm::vec4),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          vk::MemoryUsage::kDeviceLocal, "query answers"));
-  vk::DescriptorWriter(query_set_).buffer(0, in).buffer(1, out).apply(context_.device());
+  vk::DescriptorWriter(query_set_)
+      .buffer(gpu::kFieldQueryBindingQueries, in)
+      .buffer(gpu::kFieldQueryBindingAnswers, out)
+      .apply(context_.device());
   const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
   const uint32_t count = static_cast<uint32_t>(input.size());
   const vk::LinearDispatch d = vk::linear_dispatch(count);
@@ -541,20 +539,9 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
   atlas.width = image.width();
   atlas.height = image.height();
   atlas.channels = channels;
-  const VkDeviceSize bytes = VkDeviceSize(atlas.width) * atlas.height * channels * sizeof(float);
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer readback,
-                        vk::Buffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "atlas readback"));
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vk::barrier_all(cmd);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {atlas.width, atlas.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_GENERAL, readback.handle(), 1,
-                           &copy);
-  }));
   atlas.texels.resize(size_t(atlas.width) * atlas.height * channels);
-  std::memcpy(atlas.texels.data(), readback.mapped(), bytes);
+  DDGI_TRY(vk::download_image(context_, image, atlas.texels.data(),
+                              atlas.texels.size() * sizeof(float)));
   return atlas;
 }
 

@@ -97,8 +97,11 @@ Status ShadowField::create_layouts_and_kernels(vk::TraceBackend backend) {
                                              {gpu::kShadowUpdateBindingVisibilityOut, storage},
                                              {gpu::kShadowUpdateBindingMomentsOut, storage}},
                                             1, "shadow field update set"));
-  DDGI_ASSIGN_OR_RETURN(query_layout_, vk::DescriptorLayout::create(context_, {{0}, {1}}, 1,
-                                                                    "shadow field query set"));
+  DDGI_ASSIGN_OR_RETURN(
+      query_layout_,
+      vk::DescriptorLayout::create(
+          context_, {{gpu::kShadowQueryBindingQueries}, {gpu::kShadowQueryBindingAnswers}}, 1,
+          "shadow field query set"));
   DDGI_ASSIGN_OR_RETURN(sampling_set_, sampling_layout_.allocate());
   DDGI_ASSIGN_OR_RETURN(update_set_, update_layout_.allocate());
   DDGI_ASSIGN_OR_RETURN(query_set_, query_layout_.allocate());
@@ -357,7 +360,10 @@ Result<std::vector<ShadowFieldAnswer>> ShadowField::query(
       vk::Buffer::create(context_, input.size() * sizeof(gpu::ShadowAnswer),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          vk::MemoryUsage::kDeviceLocal, "shadow answers"));
-  vk::DescriptorWriter(query_set_).buffer(0, in).buffer(1, out).apply(context_.device());
+  vk::DescriptorWriter(query_set_)
+      .buffer(gpu::kShadowQueryBindingQueries, in)
+      .buffer(gpu::kShadowQueryBindingAnswers, out)
+      .apply(context_.device());
   const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
   const uint32_t count = static_cast<uint32_t>(input.size());
   const vk::LinearDispatch d = vk::linear_dispatch(count);

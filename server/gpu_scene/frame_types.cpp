@@ -1,6 +1,24 @@
 #include "gpu_scene/frame_types.h"
 
+#include "shared/frame_data.h"
+
 namespace ddgi {
+
+// The kernels read these enums as the frame_data.h constants.
+static_assert(uint32_t(Tonemap::kClamp) == gpu::kTonemapClamp);
+static_assert(uint32_t(Tonemap::kReinhard) == gpu::kTonemapReinhard);
+static_assert(uint32_t(Tonemap::kAces) == gpu::kTonemapAces);
+static_assert(uint32_t(DirectMode::kTracedShadows) == gpu::kDirectTracedShadows);
+static_assert(uint32_t(DirectMode::kUnshadowed) == gpu::kDirectUnshadowed);
+static_assert(uint32_t(DirectMode::kShadowField) == gpu::kDirectShadowField);
+static_assert(uint32_t(DirectMode::kAmbientOcclusion) == gpu::kDirectAmbientOcclusion);
+static_assert(uint32_t(View::kFull) == gpu::kViewFull);
+static_assert(uint32_t(View::kDirect) == gpu::kViewDirect);
+static_assert(uint32_t(View::kIndirect) == gpu::kViewIndirect);
+static_assert(uint32_t(View::kAlbedo) == gpu::kViewAlbedo);
+static_assert(uint32_t(View::kNormal) == gpu::kViewNormal);
+static_assert(uint32_t(View::kProbes) == gpu::kViewProbes);
+static_assert(uint32_t(View::kAtlas) == gpu::kViewAtlas);
 
 Result<Tonemap> parse_tonemap(const std::string& text) {
   if (text == "clamp") return Tonemap::kClamp;

@@ -32,6 +32,11 @@ std::span<const uint8_t> as_bytes(const T& v) {
   return {reinterpret_cast<const uint8_t*>(&v), sizeof(T)};
 }
 
+// GpuLight::type holds the scene's LightType as the scene_data.h constants.
+static_assert(uint32_t(LightType::kPoint) == gpu::kLightPoint);
+static_assert(uint32_t(LightType::kSpot) == gpu::kLightSpot);
+static_assert(uint32_t(LightType::kDirectional) == gpu::kLightDirectional);
+
 gpu::GpuLight to_gpu_light(const Light& light) {
   gpu::GpuLight g{};
   g.position = light.position;

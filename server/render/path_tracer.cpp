@@ -19,6 +19,11 @@ static_assert(sizeof(gpu::PathTraceConstants) <= 128, "push constants guaranteed
 static_assert(gpu::kPathTraceSet == gpu::kFrameSet);
 static_assert(gpu::kPathTraceBindingRadiance == gpu::kFrameBindingRadiance);
 static_assert(gpu::kPathTraceBindingLdr == gpu::kFrameBindingLdr);
+static_assert(uint32_t(PathTraceView::kFull) == gpu::kPathTraceFull);
+static_assert(uint32_t(PathTraceView::kDirect) == gpu::kPathTraceDirect);
+static_assert(uint32_t(PathTraceView::kIndirect) == gpu::kPathTraceIndirect);
+static_assert(uint32_t(PathTraceView::kPunctualDirect) == gpu::kPathTracePunctualDirect);
+static_assert(uint32_t(PathTraceView::kFieldIndirect) == gpu::kPathTraceFieldIndirect);
 
 bool same_camera(const Camera& a, const Camera& b) {
   return a.position == b.position && a.forward == b.forward && a.up == b.up && a.yfov == b.yfov &&

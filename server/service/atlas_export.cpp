@@ -11,6 +11,7 @@
 #include <exception>
 #include <string>
 
+#include "gi/probe_state.h"
 #include "shared/field_data.h"
 #include "shared/shadow_field_data.h"
 
@@ -153,9 +154,8 @@ std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
   image.channels = 4;
   image.texels.reserve(states.size() * 4);
   for (const gpu::ProbeState& state : states) {
-    image.texels.insert(image.texels.end(),
-                        {state.offset.x, state.offset.y, state.offset.z,
-                         float((state.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift)});
+    image.texels.insert(image.texels.end(), {state.offset.x, state.offset.y, state.offset.z,
+                                             float(static_cast<uint32_t>(probe_state(state)))});
   }
   v1::AtlasMetadata m;
   m.set_kind(v1::ATLAS_KIND_PROBE_STATES);
@@ -174,40 +174,22 @@ std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
   return {std::move(m), std::move(image)};
 }
 
-}  // namespace
-
+// A float atlas (RGBA32F or RG32F, GENERAL layout) on the CPU.
 Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image) {
   AtlasImage atlas;
   atlas.width = image.width();
   atlas.height = image.height();
-  switch (image.format()) {
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-      atlas.channels = 4;
-      break;
-    case VK_FORMAT_R32G32_SFLOAT:
-      atlas.channels = 2;
-      break;
-    default:
-      return internal_error("atlas image format " + std::to_string(int(image.format())) +
-                            " is not a float format the dump knows");
+  atlas.channels = vk::float_channels(image.format());
+  if (atlas.channels == 0) {
+    return internal_error("the atlas image is not in a float format the dump knows");
   }
-  const VkDeviceSize bytes =
-      VkDeviceSize(atlas.width) * atlas.height * atlas.channels * sizeof(float);
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer readback,
-                        vk::Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           vk::MemoryUsage::kReadback, "atlas dump readback"));
-  DDGI_TRY(context.submit_and_wait([&](VkCommandBuffer cmd) {
-    vk::barrier_all(cmd);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {atlas.width, atlas.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_GENERAL, readback.handle(), 1,
-                           &copy);
-  }));
   atlas.texels.resize(size_t(atlas.width) * atlas.height * atlas.channels);
-  std::memcpy(atlas.texels.data(), readback.mapped(), bytes);
+  DDGI_TRY(
+      vk::download_image(context, image, atlas.texels.data(), atlas.texels.size() * sizeof(float)));
   return atlas;
 }
+
+}  // namespace
 
 Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,
                                                             IrradianceField* field,

@@ -19,9 +19,6 @@ namespace ddgi::service {
 
 using AtlasImage = IrradianceField::AtlasImage;
 
-// Reads a float image (RGBA32F or RG32F, GENERAL layout) back to the CPU.
-Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image);
-
 // The dump of `kind` with its metadata (total_bytes not yet set); `shadow` may be null (then
 // the shadow kinds are FAILED_PRECONDITION).
 Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,

@@ -71,52 +71,48 @@ Result<uint64_t> parse_bytes(const std::string& text, const std::string& flag) {
   return uint64_t(value) * scale;
 }
 
-Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
-                                                  {"listen",
-                                                   "port-file",
-                                                   "scene-root",
-                                                   "max-sessions",
-                                                   "max-views-per-session",
-                                                   "max-width",
-                                                   "max-height",
-                                                   "max-message-bytes",
-                                                   "max-upload-bytes",
-                                                   "max-query-points",
-                                                   "max-lights",
-                                                   "max-fps",
-                                                   "max-warmup-updates",
-                                                   "gpu-memory-budget",
-                                                   "tls-cert",
-                                                   "tls-key",
-                                                   "auth-token-file",
-                                                   "metrics-port",
-                                                   "metrics-address",
-                                                   "encode-threads",
-                                                   "shutdown-grace",
-                                                   "device",
-                                                   "backend",
-                                                   "log-level"},
-                                                  {"no-reflection", "validation", "help"}));
-  if (flags.has("help")) {
-    std::fputs(kUsage, stdout);
-    return ok_status();
-  }
-  if (!flags.positional().empty()) {
-    return invalid_argument("unexpected argument '" + flags.positional()[0] + "' (see --help)");
-  }
+Result<Flags> parse_flags(int argc, char** argv) {
+  return Flags::parse(argc, argv,
+                      {"listen",
+                       "port-file",
+                       "scene-root",
+                       "max-sessions",
+                       "max-views-per-session",
+                       "max-width",
+                       "max-height",
+                       "max-message-bytes",
+                       "max-upload-bytes",
+                       "max-query-points",
+                       "max-lights",
+                       "max-fps",
+                       "max-warmup-updates",
+                       "gpu-memory-budget",
+                       "tls-cert",
+                       "tls-key",
+                       "auth-token-file",
+                       "metrics-port",
+                       "metrics-address",
+                       "encode-threads",
+                       "shutdown-grace",
+                       "device",
+                       "backend",
+                       "log-level"},
+                      {"no-reflection", "validation", "help"});
+}
+
+Status apply_log_level(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(const std::string level_text, flags.get_string("log-level", "info"));
   LogLevel level;
   if (!parse_log_level(level_text, &level)) {
     return invalid_argument("--log-level must be debug, info, warning, error or off");
   }
   set_log_level(level);
+  return ok_status();
+}
 
-  ServerOptions options;
-  DDGI_ASSIGN_OR_RETURN(options.listen, flags.get_string("listen", options.listen));
-  DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
-  DDGI_ASSIGN_OR_RETURN(options.scene_root, flags.get_string("scene-root", default_scene_root()));
-  ServiceLimits& l = options.limits;
+// --max-*, --gpu-memory-budget, validated.
+Result<ServiceLimits> service_limits(const Flags& flags) {
+  ServiceLimits l;
   auto get_u32 = [&](const char* name, uint32_t fallback, int64_t max) -> Result<uint32_t> {
     DDGI_ASSIGN_OR_RETURN(const int64_t value, flags.get_int(name, fallback, 0, max));
     return static_cast<uint32_t>(value);
@@ -141,7 +137,14 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const std::string budget, flags.get_string("gpu-memory-budget", "0"));
   DDGI_ASSIGN_OR_RETURN(l.gpu_memory_budget_bytes, parse_bytes(budget, "--gpu-memory-budget"));
   DDGI_TRY(validate(l));
+  return l;
+}
 
+Result<ServerOptions> server_options(const Flags& flags) {
+  ServerOptions options;
+  DDGI_ASSIGN_OR_RETURN(options.listen, flags.get_string("listen", options.listen));
+  DDGI_ASSIGN_OR_RETURN(options.scene_root, flags.get_string("scene-root", default_scene_root()));
+  DDGI_ASSIGN_OR_RETURN(options.limits, service_limits(flags));
   options.reflection = !flags.has("no-reflection");
   DDGI_ASSIGN_OR_RETURN(options.tls_cert_file, flags.get_string("tls-cert", ""));
   DDGI_ASSIGN_OR_RETURN(options.tls_key_file, flags.get_string("tls-key", ""));
@@ -157,48 +160,79 @@ Status run(int argc, char** argv) {
   options.encode_threads = static_cast<unsigned>(encode_threads);
   DDGI_ASSIGN_OR_RETURN(const double grace, flags.get_double("shutdown-grace", 5.0, 0.1, 600.0));
   options.shutdown_grace = std::chrono::milliseconds(static_cast<int64_t>(grace * 1000.0));
+  return options;
+}
 
-  vk::ContextOptions context_options;
-  context_options.validation = flags.has("validation");
-  DDGI_ASSIGN_OR_RETURN(context_options.device_filter, flags.get_string("device", ""));
+Result<vk::ContextOptions> context_options(const Flags& flags, uint64_t memory_budget_bytes) {
+  vk::ContextOptions options;
+  options.validation = flags.has("validation");
+  DDGI_ASSIGN_OR_RETURN(options.device_filter, flags.get_string("device", ""));
   DDGI_ASSIGN_OR_RETURN(const std::string backend_text, flags.get_string("backend", "auto"));
-  DDGI_ASSIGN_OR_RETURN(context_options.backend, vk::parse_backend(backend_text));
-  context_options.memory_budget_bytes = l.gpu_memory_budget_bytes;
+  DDGI_ASSIGN_OR_RETURN(options.backend, vk::parse_backend(backend_text));
+  options.memory_budget_bytes = memory_budget_bytes;
+  return options;
+}
 
-  // Signals go to one thread that waits for them; every other thread (gRPC's, the frame loops)
-  // inherits the blocked mask, so no handler ever runs inside a lock.
+// Signals go to one thread that waits for them; every other thread (gRPC's, the frame loops)
+// inherits the blocked mask, so no handler ever runs inside a lock. Call before any thread starts.
+sigset_t block_stop_signals() {
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  return signals;
+}
 
-  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(context_options));
-  DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
-  if (!port_file.empty()) {
-    std::ofstream out(port_file + ".tmp");
-    out << server->port() << "\n";
-    out.close();
-    std::rename((port_file + ".tmp").c_str(), port_file.c_str());  // readers never see half
-  }
-  std::printf("ddgi-server: listening on port %d\n", server->port());
-  std::fflush(stdout);
+void write_port_file(const std::string& path, int port) {
+  std::ofstream out(path + ".tmp");
+  out << port << "\n";
+  out.close();
+  std::rename((path + ".tmp").c_str(), path.c_str());  // readers never see half
+}
 
+// Waits for SIGTERM or SIGINT, then shuts `server` down; exits the process (code 3) when that
+// takes longer than the grace period allows.
+void serve_until_stopped(Server& server, const sigset_t& signals,
+                         std::chrono::milliseconds shutdown_grace) {
   int signal_number = 0;
   sigwait(&signals, &signal_number);
   LOG_INFO << "received " << (signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
   // Whatever happens below, the process is gone a little after the grace period.
-  const auto hard_limit = options.shutdown_grace + std::chrono::seconds(5);
+  const auto hard_limit = shutdown_grace + std::chrono::seconds(5);
   std::thread([hard_limit] {
     std::this_thread::sleep_for(hard_limit);
     std::fprintf(stderr, "ddgi-server: shutdown took too long, exiting\n");
     _exit(3);
   }).detach();
-  const bool clean = server->shutdown();
-  if (!clean) {
+  if (!server.shutdown()) {
     std::fprintf(stderr, "ddgi-server: sessions did not end in time, exiting without cleanup\n");
     _exit(3);
   }
+}
+
+Status run(int argc, char** argv) {
+  DDGI_ASSIGN_OR_RETURN(const Flags flags, parse_flags(argc, argv));
+  if (flags.has("help")) {
+    std::fputs(kUsage, stdout);
+    return ok_status();
+  }
+  if (!flags.positional().empty()) {
+    return invalid_argument("unexpected argument '" + flags.positional()[0] + "' (see --help)");
+  }
+  DDGI_TRY(apply_log_level(flags));
+  DDGI_ASSIGN_OR_RETURN(const ServerOptions options, server_options(flags));
+  DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
+  DDGI_ASSIGN_OR_RETURN(const vk::ContextOptions vulkan,
+                        context_options(flags, options.limits.gpu_memory_budget_bytes));
+  const sigset_t signals = block_stop_signals();
+
+  DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(vulkan));
+  DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
+  if (!port_file.empty()) write_port_file(port_file, server->port());
+  std::printf("ddgi-server: listening on port %d\n", server->port());
+  std::fflush(stdout);
+  serve_until_stopped(*server, signals, options.shutdown_grace);
   server.reset();
   const uint32_t messages = context->validation_message_count();
   context.reset();

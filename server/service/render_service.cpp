@@ -5,6 +5,7 @@
 #include "core/log.h"
 #include "gi/field_param_table.h"
 #include "gi/shadow_params_table.h"
+#include "rpc/status_code_name.h"
 #include "service/atlas_stream.h"
 #include "service/frame_stream.h"
 #include "service/grpc_status.h"
@@ -16,35 +17,6 @@
 
 namespace ddgi::service {
 namespace {
-
-const char* code_name(grpc::StatusCode code) {
-  switch (code) {
-    case grpc::StatusCode::OK:
-      return "OK";
-    case grpc::StatusCode::CANCELLED:
-      return "CANCELLED";
-    case grpc::StatusCode::INVALID_ARGUMENT:
-      return "INVALID_ARGUMENT";
-    case grpc::StatusCode::DEADLINE_EXCEEDED:
-      return "DEADLINE_EXCEEDED";
-    case grpc::StatusCode::NOT_FOUND:
-      return "NOT_FOUND";
-    case grpc::StatusCode::RESOURCE_EXHAUSTED:
-      return "RESOURCE_EXHAUSTED";
-    case grpc::StatusCode::FAILED_PRECONDITION:
-      return "FAILED_PRECONDITION";
-    case grpc::StatusCode::UNIMPLEMENTED:
-      return "UNIMPLEMENTED";
-    case grpc::StatusCode::INTERNAL:
-      return "INTERNAL";
-    case grpc::StatusCode::UNAVAILABLE:
-      return "UNAVAILABLE";
-    case grpc::StatusCode::UNAUTHENTICATED:
-      return "UNAUTHENTICATED";
-    default:
-      return "OTHER";
-  }
-}
 
 Status require_view_id(const std::string& view_id) {
   if (view_id.empty()) return invalid_argument("view_id is empty");
@@ -99,12 +71,13 @@ RenderServiceImpl::RenderServiceImpl(vk::Context& context, const ServiceLimits& 
 
 void RenderServiceImpl::record(const char* method, const std::string& session_id,
                                const grpc::Status& status) {
-  metrics_.count_rpc(method, code_name(status.error_code()));
+  metrics_.count_rpc(method, status_code_name(status.error_code()));
   if (status.ok()) {
     LOG_DEBUG << "rpc method=" << method << " session=" << printable(session_id) << " code=OK";
   } else {
     LOG_INFO << "rpc method=" << method << " session=" << printable(session_id)
-             << " code=" << code_name(status.error_code()) << " message=" << status.error_message();
+             << " code=" << status_code_name(status.error_code())
+             << " message=" << status.error_message();
   }
 }
 

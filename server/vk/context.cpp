@@ -105,6 +105,65 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   return caps;
 }
 
+// The instance layers to enable: the validation layer when asked for (an error when absent).
+Result<std::vector<const char*>> instance_layers(bool validation) {
+  if (!validation) return std::vector<const char*>{};
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  const bool present = std::any_of(layers.begin(), layers.end(), [](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, kValidationLayer) == 0;
+  });
+  if (!present) {
+    return failed_precondition(
+        "validation requested but VK_LAYER_KHRONOS_validation is not installed "
+        "(Debian package vulkan-validationlayers)");
+  }
+  return std::vector<const char*>{kValidationLayer};
+}
+
+std::vector<VkExtensionProperties> instance_extensions(const char* layer) {
+  uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(layer, &count, nullptr);
+  std::vector<VkExtensionProperties> list(count);
+  vkEnumerateInstanceExtensionProperties(layer, &count, list.data());
+  return list;
+}
+
+// Whether VK_EXT_debug_utils can be enabled; with validation on it must be, or the layer's
+// findings would reach no counter and a "no validation messages" check would pass whatever
+// happens.
+Result<bool> debug_utils_available(bool validation) {
+  bool available = has_extension(instance_extensions(nullptr), VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (validation && !available) {
+    // The validation layer may be the one providing the extension.
+    available =
+        has_extension(instance_extensions(kValidationLayer), VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  if (validation && !available) {
+    return failed_precondition(
+        "validation requested but VK_EXT_debug_utils is not available, so validation messages "
+        "could not be counted");
+  }
+  return available;
+}
+
+// Discrete GPUs first, then integrated ones, then the rest (lavapipe), each in the driver's order.
+void sort_by_device_type(std::vector<VkPhysicalDevice>& devices) {
+  std::stable_sort(devices.begin(), devices.end(), [](VkPhysicalDevice a, VkPhysicalDevice b) {
+    VkPhysicalDeviceProperties pa, pb;
+    vkGetPhysicalDeviceProperties(a, &pa);
+    vkGetPhysicalDeviceProperties(b, &pb);
+    auto rank = [](VkPhysicalDeviceType t) {
+      return t == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 0
+             : t == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 1
+                                                           : 2;
+    };
+    return rank(pa.deviceType) < rank(pb.deviceType);
+  });
+}
+
 }  // namespace
 
 std::string missing_for_tracing(const DeviceCapabilities& caps) {
@@ -173,45 +232,28 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debug_callback(
 }
 
 Status Context::init(const ContextOptions& options) {
-  // Instance.
-  uint32_t layer_count = 0;
-  vkEnumerateInstanceLayerProperties(&layer_count, nullptr);
-  std::vector<VkLayerProperties> layers(layer_count);
-  vkEnumerateInstanceLayerProperties(&layer_count, layers.data());
-  std::vector<const char*> enabled_layers;
-  if (options.validation) {
-    const bool present = std::any_of(layers.begin(), layers.end(), [](const VkLayerProperties& l) {
-      return std::strcmp(l.layerName, kValidationLayer) == 0;
-    });
-    if (!present) {
-      return failed_precondition(
-          "validation requested but VK_LAYER_KHRONOS_validation is not installed "
-          "(Debian package vulkan-validationlayers)");
-    }
-    enabled_layers.push_back(kValidationLayer);
-  }
-  uint32_t ext_count = 0;
-  vkEnumerateInstanceExtensionProperties(nullptr, &ext_count, nullptr);
-  std::vector<VkExtensionProperties> instance_exts(ext_count);
-  vkEnumerateInstanceExtensionProperties(nullptr, &ext_count, instance_exts.data());
-  std::vector<const char*> enabled_instance_exts;
-  bool debug_utils = has_extension(instance_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-  if (options.validation && !debug_utils) {
-    // The validation layer may be the one providing the extension.
-    uint32_t layer_ext_count = 0;
-    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, nullptr);
-    std::vector<VkExtensionProperties> layer_exts(layer_ext_count);
-    vkEnumerateInstanceExtensionProperties(kValidationLayer, &layer_ext_count, layer_exts.data());
-    debug_utils = has_extension(layer_exts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-  }
-  if (options.validation && !debug_utils) {
-    // Without a messenger the layer's findings reach no counter, and a "no validation
-    // messages" check would pass whatever happens.
-    return failed_precondition(
-        "validation requested but VK_EXT_debug_utils is not available, so validation messages "
-        "could not be counted");
-  }
-  if (debug_utils) enabled_instance_exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  DDGI_ASSIGN_OR_RETURN(const std::vector<const char*> layers, instance_layers(options.validation));
+  DDGI_ASSIGN_OR_RETURN(const bool debug_utils, debug_utils_available(options.validation));
+  DDGI_TRY(create_instance(layers, debug_utils, options.validation));
+  DDGI_TRY(pick_physical_device(options.device_filter));
+  DDGI_ASSIGN_OR_RETURN(default_backend_, choose_backend(caps_, options.backend));
+  DDGI_TRY(pick_queue_family());
+  DDGI_TRY(create_device());
+  load_device_functions(debug_utils);
+  DDGI_TRY(create_command_objects());
+
+  memory_budget_ = options.memory_budget_bytes;
+  LOG_INFO << "vulkan device: " << caps_.device_name << " (" << caps_.driver_name << "), ray query "
+           << (caps_.ray_query ? "yes" : "no") << ", ray-tracing pipeline "
+           << (caps_.ray_tracing_pipeline ? "yes" : "no") << ", backend "
+           << backend_name(default_backend_) << (validation_enabled_ ? ", validation on" : "");
+  return ok_status();
+}
+
+Status Context::create_instance(const std::vector<const char*>& layers, bool debug_utils,
+                                bool validation) {
+  std::vector<const char*> extensions;
+  if (debug_utils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "ddgi";
@@ -230,14 +272,14 @@ Status Context::init(const ContextOptions& options) {
 
   VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   instance_info.pApplicationInfo = &app;
-  instance_info.enabledLayerCount = static_cast<uint32_t>(enabled_layers.size());
-  instance_info.ppEnabledLayerNames = enabled_layers.data();
-  instance_info.enabledExtensionCount = static_cast<uint32_t>(enabled_instance_exts.size());
-  instance_info.ppEnabledExtensionNames = enabled_instance_exts.data();
-  if (options.validation && debug_utils) instance_info.pNext = &messenger_info;
+  instance_info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+  instance_info.ppEnabledLayerNames = layers.data();
+  instance_info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  instance_info.ppEnabledExtensionNames = extensions.data();
+  if (validation && debug_utils) instance_info.pNext = &messenger_info;
   VK_TRY(vkCreateInstance(&instance_info, nullptr, &instance_));
 
-  if (options.validation && debug_utils) {
+  if (validation && debug_utils) {
     auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     if (!create_messenger) {
@@ -249,8 +291,10 @@ Status Context::init(const ContextOptions& options) {
   }
   // On only with a messenger that counts what the layer reports.
   validation_enabled_ = messenger_ != VK_NULL_HANDLE;
+  return ok_status();
+}
 
-  // Physical device: the first that can trace (matching the filter), discrete GPUs first.
+Status Context::pick_physical_device(const std::string& device_filter) {
   uint32_t device_count = 0;
   vkEnumeratePhysicalDevices(instance_, &device_count, nullptr);
   if (device_count == 0) {
@@ -260,24 +304,12 @@ Status Context::init(const ContextOptions& options) {
   }
   std::vector<VkPhysicalDevice> devices(device_count);
   vkEnumeratePhysicalDevices(instance_, &device_count, devices.data());
-  std::stable_sort(devices.begin(), devices.end(), [](VkPhysicalDevice a, VkPhysicalDevice b) {
-    VkPhysicalDeviceProperties pa, pb;
-    vkGetPhysicalDeviceProperties(a, &pa);
-    vkGetPhysicalDeviceProperties(b, &pb);
-    auto rank = [](VkPhysicalDeviceType t) {
-      return t == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 0
-             : t == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 1
-                                                           : 2;
-    };
-    return rank(pa.deviceType) < rank(pb.deviceType);
-  });
+  sort_by_device_type(devices);
   std::string rejected;
   for (VkPhysicalDevice candidate : devices) {
     DeviceCapabilities caps = query_capabilities(candidate);
-    if (!options.device_filter.empty() &&
-        caps.device_name.find(options.device_filter) == std::string::npos) {
-      rejected +=
-          "\n  " + caps.device_name + ": does not match --device '" + options.device_filter + "'";
+    if (!device_filter.empty() && caps.device_name.find(device_filter) == std::string::npos) {
+      rejected += "\n  " + caps.device_name + ": does not match --device '" + device_filter + "'";
       continue;
     }
     const std::string missing = missing_for_tracing(caps);
@@ -287,16 +319,12 @@ Status Context::init(const ContextOptions& options) {
     }
     physical_device_ = candidate;
     caps_ = caps;
-    break;
+    return ok_status();
   }
-  if (physical_device_ == VK_NULL_HANDLE) {
-    return failed_precondition("no Vulkan device can trace rays:" + rejected);
-  }
+  return failed_precondition("no Vulkan device can trace rays:" + rejected);
+}
 
-  // Backend.
-  DDGI_ASSIGN_OR_RETURN(default_backend_, choose_backend(caps_, options.backend));
-
-  // Queue family with compute.
+Status Context::pick_queue_family() {
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);
@@ -311,8 +339,10 @@ Status Context::init(const ContextOptions& options) {
   }
   if (!found_family) return failed_precondition(caps_.device_name + " has no compute queue");
   caps_.timestamps = caps_.timestamps && families[queue_family_].timestampValidBits > 0;
+  return ok_status();
+}
 
-  // Logical device with every tracing feature the device has, so either backend can run.
+Status Context::create_device() {
   std::vector<const char*> extensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
                                          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
   if (caps_.ray_query) extensions.push_back(VK_KHR_RAY_QUERY_EXTENSION_NAME);
@@ -364,7 +394,10 @@ Status Context::init(const ContextOptions& options) {
   device_info.ppEnabledExtensionNames = extensions.data();
   VK_TRY(vkCreateDevice(physical_device_, &device_info, nullptr, &device_));
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+  return ok_status();
+}
 
+void Context::load_device_functions(bool debug_utils) {
 #define DDGI_LOAD_DEVICE_FN(name) \
   fn_.name = reinterpret_cast<PFN_##name>(vkGetDeviceProcAddr(device_, #name))
   DDGI_LOAD_DEVICE_FN(vkCreateAccelerationStructureKHR);
@@ -386,7 +419,9 @@ Status Context::init(const ContextOptions& options) {
     fn_.vkCmdEndDebugUtilsLabelEXT = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
         vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
   }
+}
 
+Status Context::create_command_objects() {
   VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pool_info.flags =
       VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -394,12 +429,6 @@ Status Context::init(const ContextOptions& options) {
   VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
   VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VK_TRY(vkCreateFence(device_, &fence_info, nullptr, &fence_));
-
-  memory_budget_ = options.memory_budget_bytes;
-  LOG_INFO << "vulkan device: " << caps_.device_name << " (" << caps_.driver_name << "), ray query "
-           << (caps_.ray_query ? "yes" : "no") << ", ray-tracing pipeline "
-           << (caps_.ray_tracing_pipeline ? "yes" : "no") << ", backend "
-           << backend_name(default_backend_) << (validation_enabled_ ? ", validation on" : "");
   return ok_status();
 }
 

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/result.h"
 
@@ -127,7 +128,17 @@ class Context {
 
  private:
   Context() = default;
+  // init() in the order it runs: each step fills the members the next ones read.
   Status init(const ContextOptions& options);
+  Status create_instance(const std::vector<const char*>& layers, bool debug_utils, bool validation);
+  // The first device (discrete GPUs first) that matches `device_filter` and can trace rays.
+  Status pick_physical_device(const std::string& device_filter);
+  // A compute queue family, the universal (graphics + compute) one when there is one.
+  Status pick_queue_family();
+  // The logical device with every tracing feature the device has, so either backend can run.
+  Status create_device();
+  void load_device_functions(bool debug_utils);
+  Status create_command_objects();
   static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);

@@ -276,6 +276,53 @@ Status download_buffer(Context& context, const Buffer& buffer, void* out, VkDevi
   return ok_status();
 }
 
+Status download_image(Context& context, const Image& image, void* out, VkDeviceSize size,
+                      VkImageLayout layout) {
+  const VkDeviceSize expected =
+      VkDeviceSize(image.width()) * image.height() * texel_bytes(image.format());
+  if (expected == 0 || size != expected) {
+    return internal_error("download of " + std::to_string(size) + " bytes from a " +
+                          std::to_string(image.width()) + "x" + std::to_string(image.height()) +
+                          " image of format " + std::to_string(int(image.format())) +
+                          " (expected " + std::to_string(expected) + ")");
+  }
+  DDGI_ASSIGN_OR_RETURN(Buffer readback,
+                        Buffer::create(context, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       MemoryUsage::kReadback, "image readback"));
+  DDGI_TRY(context.submit_and_wait([&](VkCommandBuffer cmd) {
+    barrier_all(cmd);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {image.width(), image.height(), 1};
+    vkCmdCopyImageToBuffer(cmd, image.handle(), layout, readback.handle(), 1, &copy);
+  }));
+  std::memcpy(out, readback.mapped(), size);
+  return ok_status();
+}
+
+uint32_t texel_bytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+      return 4;
+    default:
+      return 4 * float_channels(format);
+  }
+}
+
+uint32_t float_channels(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R32_SFLOAT:
+      return 1;
+    case VK_FORMAT_R32G32_SFLOAT:
+      return 2;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
 void barrier_all(VkCommandBuffer cmd) {
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |

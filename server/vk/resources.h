@@ -118,6 +118,15 @@ Status update_buffer(Context& context, const Buffer& buffer, std::span<const uin
 
 // Copies a device buffer into host memory.
 Status download_buffer(Context& context, const Buffer& buffer, void* out, VkDeviceSize size);
+// Copies a whole 2D colour image (mip 0, layer 0), tightly packed, into host memory after every
+// earlier GPU write; `size` must be width x height x texel_bytes(format). The image stays in
+// `layout` (GENERAL: storage images such as the fields' atlases).
+Status download_image(Context& context, const Image& image, void* out, VkDeviceSize size,
+                      VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
+// Bytes per texel of the colour formats images are made with here; 0 for any other format.
+uint32_t texel_bytes(VkFormat format);
+// Channels of a 32-bit float colour format (R32, RG32, RGBA32 SFLOAT); 0 for any other format.
+uint32_t float_channels(VkFormat format);
 
 // A full pipeline barrier between compute / ray-tracing / transfer writes and reads.
 void barrier_all(VkCommandBuffer cmd);

@@ -8,34 +8,34 @@
 #include "shared/scene_data.h"
 #include "common/math.glsl"
 
-layout(set = 0, binding = kSceneBindingTlas) uniform accelerationStructureEXT scene_tlas;
-layout(set = 0, binding = kSceneBindingPositions, scalar) readonly buffer ScenePositions {
+layout(set = kSceneSet, binding = kSceneBindingTlas) uniform accelerationStructureEXT scene_tlas;
+layout(set = kSceneSet, binding = kSceneBindingPositions, scalar) readonly buffer ScenePositions {
   vec3 scene_positions[];
 };
-layout(set = 0, binding = kSceneBindingAttributes, scalar) readonly buffer SceneAttributes {
+layout(set = kSceneSet, binding = kSceneBindingAttributes, scalar) readonly buffer SceneAttributes {
   VertexAttributes scene_attributes[];
 };
-layout(set = 0, binding = kSceneBindingIndices, scalar) readonly buffer SceneIndices {
+layout(set = kSceneSet, binding = kSceneBindingIndices, scalar) readonly buffer SceneIndices {
   uint scene_indices[];
 };
-layout(set = 0, binding = kSceneBindingGeometries, scalar) readonly buffer SceneGeometries {
+layout(set = kSceneSet, binding = kSceneBindingGeometries, scalar) readonly buffer SceneGeometries {
   GpuGeometry scene_geometries[];
 };
-layout(set = 0, binding = kSceneBindingInstances, scalar) readonly buffer SceneInstances {
+layout(set = kSceneSet, binding = kSceneBindingInstances, scalar) readonly buffer SceneInstances {
   GpuInstance scene_instances[];
 };
-layout(set = 0, binding = kSceneBindingMaterials, scalar) readonly buffer SceneMaterials {
+layout(set = kSceneSet, binding = kSceneBindingMaterials, scalar) readonly buffer SceneMaterials {
   GpuMaterial scene_materials[];
 };
-layout(set = 0, binding = kSceneBindingLights, scalar) readonly buffer SceneLights {
+layout(set = kSceneSet, binding = kSceneBindingLights, scalar) readonly buffer SceneLights {
   GpuLight scene_lights[];
 };
-layout(set = 0, binding = kSceneBindingGlobals, scalar) readonly buffer SceneGlobalsBlock {
+layout(set = kSceneSet, binding = kSceneBindingGlobals, scalar) readonly buffer SceneGlobalsBlock {
   SceneGlobals scene;
 };
-layout(set = 0, binding = kSceneBindingEnvironment) uniform sampler2D environment_map;
-layout(set = 0, binding = kSceneBindingTextures) uniform sampler2D scene_textures[];
-layout(set = 0, binding = kSceneBindingEmitters, scalar) readonly buffer SceneEmitters {
+layout(set = kSceneSet, binding = kSceneBindingEnvironment) uniform sampler2D environment_map;
+layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D scene_textures[];
+layout(set = kSceneSet, binding = kSceneBindingEmitters, scalar) readonly buffer SceneEmitters {
   GpuEmitter scene_emitters[];
 };
 

@@ -9,8 +9,12 @@
 #include "gi/shadow_rays.glsl"
 
 layout(push_constant, scalar) uniform Push { ShadowDispatch pc; };
-layout(set = 1, binding = 0, scalar) readonly buffer Queries { ShadowQuery queries[]; };
-layout(set = 1, binding = 1, scalar) writeonly buffer Answers { ShadowAnswer answers[]; };
+layout(set = kShadowQuerySet, binding = kShadowQueryBindingQueries, scalar) readonly buffer Queries {
+  ShadowQuery queries[];
+};
+layout(set = kShadowQuerySet, binding = kShadowQueryBindingAnswers, scalar) writeonly buffer Answers {
+  ShadowAnswer answers[];
+};
 
 void main() {
   const uint id = linear_invocation(pc.row_width);

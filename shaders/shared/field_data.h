@@ -116,6 +116,96 @@ struct FieldDispatch {
   uint pad0;
 };
 
+// The query kernel (tests, the RPC, scripted checks): field irradiance at given points.
+DDGI_CONST uint kFieldQuerySet = 1;
+DDGI_CONST uint kFieldQueryBindingQueries = 0;  // FieldQuery per point
+DDGI_CONST uint kFieldQueryBindingAnswers = 1;  // vec4 per point: irradiance M (rgb), 0
+
+struct FieldQuery {
+  vec3 position;
+  float pad0;
+  vec3 normal;     // unit
+  float pad1;
+  vec3 to_viewer;  // unit; the self-shadow bias leans this way
+  float pad2;
+};
+
+#ifdef __cplusplus
+// C++ only: how the constants above fit together.
+static_assert(kProbeStateMask == 0xFFu << kProbeStateShift && kProbeStateCount <= 0xFFu);
+static_assert((kProbeStateMask & kProbeResetHistory) == 0);
+
+// C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
+// that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
+// check that the GLSL side agrees (same header), then update the numbers here.
+static_assert(sizeof(ProbeState) == 16);
+static_assert(offsetof(ProbeState, offset) == 0);
+static_assert(offsetof(ProbeState, flags) == 12);
+
+static_assert(sizeof(ProbeRay) == 64);
+static_assert(offsetof(ProbeRay, position) == 0);
+static_assert(offsetof(ProbeRay, distance) == 12);
+static_assert(offsetof(ProbeRay, albedo) == 16);
+static_assert(offsetof(ProbeRay, normal_oct) == 28);
+static_assert(offsetof(ProbeRay, emission) == 32);
+static_assert(offsetof(ProbeRay, flags) == 44);
+static_assert(offsetof(ProbeRay, radiance) == 48);
+static_assert(offsetof(ProbeRay, geometric_normal_oct) == 60);
+
+static_assert(sizeof(FieldConstants) == 224);
+static_assert(offsetof(FieldConstants, origin) == 0);
+static_assert(offsetof(FieldConstants, rays_per_probe) == 12);
+static_assert(offsetof(FieldConstants, spacing) == 16);
+static_assert(offsetof(FieldConstants, fixed_rays) == 28);
+static_assert(offsetof(FieldConstants, counts) == 32);
+static_assert(offsetof(FieldConstants, probe_count) == 44);
+static_assert(offsetof(FieldConstants, irradiance_texels) == 48);
+static_assert(offsetof(FieldConstants, distance_texels) == 52);
+static_assert(offsetof(FieldConstants, tiles_per_row) == 56);
+static_assert(offsetof(FieldConstants, update_index) == 60);
+static_assert(offsetof(FieldConstants, irradiance_atlas_size) == 64);
+static_assert(offsetof(FieldConstants, distance_atlas_size) == 72);
+static_assert(offsetof(FieldConstants, hysteresis) == 80);
+static_assert(offsetof(FieldConstants, distance_hysteresis) == 84);
+static_assert(offsetof(FieldConstants, change_threshold) == 88);
+static_assert(offsetof(FieldConstants, new_distribution_threshold) == 92);
+static_assert(offsetof(FieldConstants, irradiance_gamma) == 96);
+static_assert(offsetof(FieldConstants, distance_exponent) == 100);
+static_assert(offsetof(FieldConstants, backface_distance_scale) == 104);
+static_assert(offsetof(FieldConstants, self_shadow_bias) == 108);
+static_assert(offsetof(FieldConstants, energy_conservation) == 112);
+static_assert(offsetof(FieldConstants, weight_crush_threshold) == 116);
+static_assert(offsetof(FieldConstants, max_ray_distance) == 120);
+static_assert(offsetof(FieldConstants, max_visibility_distance) == 124);
+static_assert(offsetof(FieldConstants, ray_rotation) == 128);
+static_assert(offsetof(FieldConstants, direct_mode) == 192);
+static_assert(offsetof(FieldConstants, probe_offset_limit) == 196);
+static_assert(offsetof(FieldConstants, min_frontface_distance) == 200);
+static_assert(offsetof(FieldConstants, backface_threshold) == 204);
+static_assert(offsetof(FieldConstants, emitter_samples) == 208);
+static_assert(offsetof(FieldConstants, pad0) == 212);
+static_assert(offsetof(FieldConstants, pad1) == 216);
+static_assert(offsetof(FieldConstants, pad2) == 220);
+
+static_assert(sizeof(FieldDispatch) == 32);
+static_assert(offsetof(FieldDispatch, count) == 0);
+static_assert(offsetof(FieldDispatch, row_width) == 4);
+static_assert(offsetof(FieldDispatch, list_start) == 8);
+static_assert(offsetof(FieldDispatch, list_size) == 12);
+static_assert(offsetof(FieldDispatch, per_probe) == 16);
+static_assert(offsetof(FieldDispatch, first_ray) == 20);
+static_assert(offsetof(FieldDispatch, mode) == 24);
+static_assert(offsetof(FieldDispatch, pad0) == 28);
+
+static_assert(sizeof(FieldQuery) == 48);
+static_assert(offsetof(FieldQuery, position) == 0);
+static_assert(offsetof(FieldQuery, pad0) == 12);
+static_assert(offsetof(FieldQuery, normal) == 16);
+static_assert(offsetof(FieldQuery, pad1) == 28);
+static_assert(offsetof(FieldQuery, to_viewer) == 32);
+static_assert(offsetof(FieldQuery, pad2) == 44);
+#endif
+
 DDGI_NAMESPACE_END
 
 #endif

@@ -100,6 +100,64 @@ struct TonemapConstants {
   float exposure;  // linear multiplier applied before the operator
 };
 
+#ifdef __cplusplus
+// C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
+// that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
+// check that the GLSL side agrees (same header), then update the numbers here.
+static_assert(sizeof(GBufferTexel) == 40);
+static_assert(offsetof(GBufferTexel, position) == 0);
+static_assert(offsetof(GBufferTexel, normal_oct) == 12);
+static_assert(offsetof(GBufferTexel, emission) == 16);
+static_assert(offsetof(GBufferTexel, geometric_normal_oct) == 28);
+static_assert(offsetof(GBufferTexel, albedo_flags) == 32);
+
+static_assert(sizeof(PrimaryConstants) == 64);
+static_assert(offsetof(PrimaryConstants, camera_position) == 0);
+static_assert(offsetof(PrimaryConstants, width) == 12);
+static_assert(offsetof(PrimaryConstants, camera_forward) == 16);
+static_assert(offsetof(PrimaryConstants, height) == 28);
+static_assert(offsetof(PrimaryConstants, camera_right) == 32);
+static_assert(offsetof(PrimaryConstants, tmin) == 44);
+static_assert(offsetof(PrimaryConstants, camera_up) == 48);
+static_assert(offsetof(PrimaryConstants, tmax) == 60);
+
+static_assert(sizeof(DirectConstants) == 48);
+static_assert(offsetof(DirectConstants, width) == 0);
+static_assert(offsetof(DirectConstants, height) == 4);
+static_assert(offsetof(DirectConstants, mode) == 8);
+static_assert(offsetof(DirectConstants, view) == 12);
+static_assert(offsetof(DirectConstants, camera_position) == 16);
+static_assert(offsetof(DirectConstants, light_samples) == 28);
+static_assert(offsetof(DirectConstants, flags) == 32);
+static_assert(offsetof(DirectConstants, emitter_samples) == 36);
+static_assert(offsetof(DirectConstants, pad1) == 40);
+static_assert(offsetof(DirectConstants, pad2) == 44);
+
+static_assert(sizeof(IndirectConstants) == 32);
+static_assert(offsetof(IndirectConstants, camera_position) == 0);
+static_assert(offsetof(IndirectConstants, view) == 12);
+static_assert(offsetof(IndirectConstants, width) == 16);
+static_assert(offsetof(IndirectConstants, height) == 20);
+static_assert(offsetof(IndirectConstants, pad0) == 24);
+static_assert(offsetof(IndirectConstants, pad1) == 28);
+
+static_assert(sizeof(FieldViewConstants) == 64);
+static_assert(offsetof(FieldViewConstants, camera_position) == 0);
+static_assert(offsetof(FieldViewConstants, view) == 12);
+static_assert(offsetof(FieldViewConstants, camera_forward) == 16);
+static_assert(offsetof(FieldViewConstants, width) == 28);
+static_assert(offsetof(FieldViewConstants, camera_right) == 32);
+static_assert(offsetof(FieldViewConstants, height) == 44);
+static_assert(offsetof(FieldViewConstants, camera_up) == 48);
+static_assert(offsetof(FieldViewConstants, probe_radius) == 60);
+
+static_assert(sizeof(TonemapConstants) == 16);
+static_assert(offsetof(TonemapConstants, width) == 0);
+static_assert(offsetof(TonemapConstants, height) == 4);
+static_assert(offsetof(TonemapConstants, tonemap) == 8);
+static_assert(offsetof(TonemapConstants, exposure) == 12);
+#endif
+
 DDGI_NAMESPACE_END
 
 #endif

@@ -4,6 +4,7 @@
 #define DDGI_SHARED_INTEROP_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/glm.hpp>

@@ -38,6 +38,29 @@ struct PathTraceConstants {
   uint pad1;
 };
 
+#ifdef __cplusplus
+// C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
+// that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
+// check that the GLSL side agrees (same header), then update the numbers here.
+static_assert(sizeof(PathTraceConstants) == 96);
+static_assert(offsetof(PathTraceConstants, camera_position) == 0);
+static_assert(offsetof(PathTraceConstants, width) == 12);
+static_assert(offsetof(PathTraceConstants, camera_forward) == 16);
+static_assert(offsetof(PathTraceConstants, height) == 28);
+static_assert(offsetof(PathTraceConstants, camera_right) == 32);
+static_assert(offsetof(PathTraceConstants, tmin) == 44);
+static_assert(offsetof(PathTraceConstants, camera_up) == 48);
+static_assert(offsetof(PathTraceConstants, view) == 60);
+static_assert(offsetof(PathTraceConstants, seed) == 64);
+static_assert(offsetof(PathTraceConstants, first_sample) == 68);
+static_assert(offsetof(PathTraceConstants, sample_count) == 72);
+static_assert(offsetof(PathTraceConstants, max_bounces) == 76);
+static_assert(offsetof(PathTraceConstants, roulette_start) == 80);
+static_assert(offsetof(PathTraceConstants, jitter) == 84);
+static_assert(offsetof(PathTraceConstants, pad0) == 88);
+static_assert(offsetof(PathTraceConstants, pad1) == 92);
+#endif
+
 DDGI_NAMESPACE_END
 
 #endif

@@ -114,6 +114,76 @@ struct GpuEmitter {
 DDGI_CONST uint kSceneHasAlphaMask = 1u;
 DDGI_CONST uint kSceneHasTransmission = 2u;
 
+#ifdef __cplusplus
+// C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
+// that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
+// check that the GLSL side agrees (same header), then update the numbers here.
+static_assert(sizeof(VertexAttributes) == 20);
+static_assert(offsetof(VertexAttributes, normal) == 0);
+static_assert(offsetof(VertexAttributes, uv) == 12);
+
+static_assert(sizeof(GpuGeometry) == 16);
+static_assert(offsetof(GpuGeometry, first_index) == 0);
+static_assert(offsetof(GpuGeometry, first_vertex) == 4);
+static_assert(offsetof(GpuGeometry, material) == 8);
+static_assert(offsetof(GpuGeometry, flags) == 12);
+
+static_assert(sizeof(GpuInstance) == 144);
+static_assert(offsetof(GpuInstance, object_to_world) == 0);
+static_assert(offsetof(GpuInstance, normal_to_world) == 64);
+static_assert(offsetof(GpuInstance, first_geometry) == 128);
+static_assert(offsetof(GpuInstance, mesh) == 132);
+static_assert(offsetof(GpuInstance, pad0) == 136);
+static_assert(offsetof(GpuInstance, pad1) == 140);
+
+static_assert(sizeof(GpuMaterial) == 48);
+static_assert(offsetof(GpuMaterial, base_color) == 0);
+static_assert(offsetof(GpuMaterial, emissive) == 16);
+static_assert(offsetof(GpuMaterial, base_color_texture) == 28);
+static_assert(offsetof(GpuMaterial, emissive_texture) == 32);
+static_assert(offsetof(GpuMaterial, alpha_cutoff) == 36);
+static_assert(offsetof(GpuMaterial, transmission) == 40);
+static_assert(offsetof(GpuMaterial, pad0) == 44);
+
+static_assert(sizeof(GpuLight) == 64);
+static_assert(offsetof(GpuLight, position) == 0);
+static_assert(offsetof(GpuLight, type) == 12);
+static_assert(offsetof(GpuLight, direction) == 16);
+static_assert(offsetof(GpuLight, range) == 28);
+static_assert(offsetof(GpuLight, radiance) == 32);
+static_assert(offsetof(GpuLight, spot_scale) == 44);
+static_assert(offsetof(GpuLight, spot_offset) == 48);
+static_assert(offsetof(GpuLight, radius) == 52);
+static_assert(offsetof(GpuLight, pad0) == 56);
+static_assert(offsetof(GpuLight, pad1) == 60);
+
+static_assert(sizeof(SceneGlobals) == 72);
+static_assert(offsetof(SceneGlobals, environment_color) == 0);
+static_assert(offsetof(SceneGlobals, environment_has_map) == 12);
+static_assert(offsetof(SceneGlobals, environment_intensity) == 16);
+static_assert(offsetof(SceneGlobals, environment_rotation) == 20);
+static_assert(offsetof(SceneGlobals, light_count) == 24);
+static_assert(offsetof(SceneGlobals, flags) == 28);
+static_assert(offsetof(SceneGlobals, bounds_min) == 32);
+static_assert(offsetof(SceneGlobals, scene_scale) == 44);
+static_assert(offsetof(SceneGlobals, bounds_max) == 48);
+static_assert(offsetof(SceneGlobals, ray_epsilon) == 60);
+static_assert(offsetof(SceneGlobals, emitter_count) == 64);
+static_assert(offsetof(SceneGlobals, emitter_total_weight) == 68);
+
+static_assert(sizeof(GpuEmitter) == 80);
+static_assert(offsetof(GpuEmitter, p0) == 0);
+static_assert(offsetof(GpuEmitter, instance) == 12);
+static_assert(offsetof(GpuEmitter, p1) == 16);
+static_assert(offsetof(GpuEmitter, geometry) == 28);
+static_assert(offsetof(GpuEmitter, p2) == 32);
+static_assert(offsetof(GpuEmitter, primitive) == 44);
+static_assert(offsetof(GpuEmitter, normal) == 48);
+static_assert(offsetof(GpuEmitter, area) == 60);
+static_assert(offsetof(GpuEmitter, emission) == 64);
+static_assert(offsetof(GpuEmitter, cdf) == 76);
+#endif
+
 DDGI_NAMESPACE_END
 
 #endif

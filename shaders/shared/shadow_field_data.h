@@ -118,6 +118,10 @@ struct ShadowDispatch {
 };
 
 // The query kernel (tests, the eval tool): field and traced visibility at given points.
+DDGI_CONST uint kShadowQuerySet = 1;
+DDGI_CONST uint kShadowQueryBindingQueries = 0;  // ShadowQuery per point
+DDGI_CONST uint kShadowQueryBindingAnswers = 1;  // ShadowAnswer per point
+
 struct ShadowQuery {
   vec3 position;
   uint traced_samples;  // shadow rays per light for the traced answer (spherical lights)
@@ -135,6 +139,87 @@ struct ShadowAnswer {
   float weight_sum;     // of the probes that answered (0: no probe could; visibility is 1)
   float pad0;
 };
+
+#ifdef __cplusplus
+// C++ only: how the constants above fit together.
+static_assert(kShadowMaxLights == kShadowLightsPerGroup * kShadowMaxGroups);
+
+// C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
+// that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
+// check that the GLSL side agrees (same header), then update the numbers here.
+static_assert(sizeof(ShadowSurfel) == 48);
+static_assert(offsetof(ShadowSurfel, position) == 0);
+static_assert(offsetof(ShadowSurfel, flags) == 12);
+static_assert(offsetof(ShadowSurfel, direction) == 16);
+static_assert(offsetof(ShadowSurfel, distance) == 28);
+static_assert(offsetof(ShadowSurfel, normal_oct) == 32);
+static_assert(offsetof(ShadowSurfel, pad0) == 36);
+static_assert(offsetof(ShadowSurfel, pad1) == 40);
+static_assert(offsetof(ShadowSurfel, pad2) == 44);
+
+static_assert(sizeof(ShadowResult) == 64);
+static_assert(offsetof(ShadowResult, direction) == 0);
+static_assert(offsetof(ShadowResult, distance) == 12);
+static_assert(offsetof(ShadowResult, flags) == 16);
+static_assert(offsetof(ShadowResult, ao) == 20);
+static_assert(offsetof(ShadowResult, pad0) == 24);
+static_assert(offsetof(ShadowResult, pad1) == 28);
+static_assert(offsetof(ShadowResult, visibility) == 32);
+
+static_assert(sizeof(ShadowRay) == 112);
+static_assert(offsetof(ShadowRay, surfel) == 0);
+static_assert(offsetof(ShadowRay, result) == 48);
+
+static_assert(sizeof(ShadowFieldConstants) == 192);
+static_assert(offsetof(ShadowFieldConstants, origin) == 0);
+static_assert(offsetof(ShadowFieldConstants, rays_per_probe) == 12);
+static_assert(offsetof(ShadowFieldConstants, spacing) == 16);
+static_assert(offsetof(ShadowFieldConstants, probe_count) == 28);
+static_assert(offsetof(ShadowFieldConstants, counts) == 32);
+static_assert(offsetof(ShadowFieldConstants, texels) == 44);
+static_assert(offsetof(ShadowFieldConstants, tiles_per_row) == 48);
+static_assert(offsetof(ShadowFieldConstants, tile_rows) == 52);
+static_assert(offsetof(ShadowFieldConstants, light_count) == 56);
+static_assert(offsetof(ShadowFieldConstants, scene_light_count) == 60);
+static_assert(offsetof(ShadowFieldConstants, atlas_size) == 64);
+static_assert(offsetof(ShadowFieldConstants, update_index) == 72);
+static_assert(offsetof(ShadowFieldConstants, flags) == 76);
+static_assert(offsetof(ShadowFieldConstants, hysteresis) == 80);
+static_assert(offsetof(ShadowFieldConstants, visibility_exponent) == 84);
+static_assert(offsetof(ShadowFieldConstants, distance_exponent) == 88);
+static_assert(offsetof(ShadowFieldConstants, normal_bias) == 92);
+static_assert(offsetof(ShadowFieldConstants, view_bias) == 96);
+static_assert(offsetof(ShadowFieldConstants, sharpening) == 100);
+static_assert(offsetof(ShadowFieldConstants, max_ray_distance) == 104);
+static_assert(offsetof(ShadowFieldConstants, max_visibility_distance) == 108);
+static_assert(offsetof(ShadowFieldConstants, ao_distance) == 112);
+static_assert(offsetof(ShadowFieldConstants, weight_crush_threshold) == 116);
+static_assert(offsetof(ShadowFieldConstants, backface_distance_scale) == 120);
+static_assert(offsetof(ShadowFieldConstants, seed) == 124);
+static_assert(offsetof(ShadowFieldConstants, ray_rotation) == 128);
+
+static_assert(sizeof(ShadowDispatch) == 16);
+static_assert(offsetof(ShadowDispatch, count) == 0);
+static_assert(offsetof(ShadowDispatch, row_width) == 4);
+static_assert(offsetof(ShadowDispatch, mode) == 8);
+static_assert(offsetof(ShadowDispatch, per_probe) == 12);
+
+static_assert(sizeof(ShadowQuery) == 48);
+static_assert(offsetof(ShadowQuery, position) == 0);
+static_assert(offsetof(ShadowQuery, traced_samples) == 12);
+static_assert(offsetof(ShadowQuery, normal) == 16);
+static_assert(offsetof(ShadowQuery, ao_samples) == 28);
+static_assert(offsetof(ShadowQuery, to_viewer) == 32);
+static_assert(offsetof(ShadowQuery, seed) == 44);
+
+static_assert(sizeof(ShadowAnswer) == 80);
+static_assert(offsetof(ShadowAnswer, field_visibility) == 0);
+static_assert(offsetof(ShadowAnswer, traced_visibility) == 32);
+static_assert(offsetof(ShadowAnswer, field_ao) == 64);
+static_assert(offsetof(ShadowAnswer, traced_ao) == 68);
+static_assert(offsetof(ShadowAnswer, weight_sum) == 72);
+static_assert(offsetof(ShadowAnswer, pad0) == 76);
+#endif
 
 DDGI_NAMESPACE_END
 

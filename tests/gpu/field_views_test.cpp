@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "gi/irradiance_field.h"
+#include "gi/probe_state.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "tests/gpu/field_setup.h"
@@ -123,7 +124,7 @@ TEST_F(FieldViewsTest, ProbesViewDrawsEachProbeWithItsStateColour) {
   std::vector<uint32_t> state(5);
   std::vector<glm::vec3> centres(5);
   for (uint32_t p = 0; p < 5; ++p) {
-    state[p] = ((*states)[p].flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift;
+    state[p] = static_cast<uint32_t>(probe_state((*states)[p]));
     centres[p] = params.origin + glm::vec3(float(p), 0.0f, 0.0f) + (*states)[p].offset;
   }
   // The scene is built to hold these states; without them the test below proves less.

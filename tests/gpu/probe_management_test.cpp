@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/irradiance_field.h"
+#include "gi/probe_state.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
@@ -22,7 +23,7 @@ namespace ddgi::test {
 namespace {
 
 uint32_t state_of(const gpu::ProbeState& s) {
-  return (s.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift;
+  return static_cast<uint32_t>(probe_state(s));
 }
 
 class ProbeManagementTest : public GpuTest {
