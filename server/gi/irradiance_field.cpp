@@ -11,9 +11,6 @@
 namespace ddgi {
 namespace {
 
-static_assert(sizeof(gpu::ProbeRay) == 64);
-static_assert(sizeof(gpu::FieldDispatch) == 32);
-
 constexpr uint32_t kMaxTimedPasses = 16;
 
 // `pass` with its declared reads and writes.
@@ -82,35 +79,26 @@ Result<std::unique_ptr<IrradianceField>> IrradianceField::create(
 }
 
 Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
-  DDGI_ASSIGN_OR_RETURN(
-      sampling_layout_,
-      vk::DescriptorLayout::create(
-          context_,
-          {{gpu::kFieldBindingConstants},
-           {gpu::kFieldBindingProbes},
-           {gpu::kFieldBindingIrradiance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-           {gpu::kFieldBindingDistance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
-          1, "field sampling set"));
-  DDGI_ASSIGN_OR_RETURN(
-      update_layout_,
-      vk::DescriptorLayout::create(
-          context_,
-          {{gpu::kFieldUpdateBindingRays},
-           {gpu::kFieldUpdateBindingIrradianceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-           {gpu::kFieldUpdateBindingDistanceOut, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-           {gpu::kFieldUpdateBindingProbeList}},
-          1, "field update set"));
-  DDGI_ASSIGN_OR_RETURN(
-      query_layout_,
-      vk::DescriptorLayout::create(
-          context_, {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}}, 1,
-          "field query set"));
-  DDGI_ASSIGN_OR_RETURN(query_set_, query_layout_.allocate());
-  DDGI_ASSIGN_OR_RETURN(sampling_set_, sampling_layout_.allocate());
-  DDGI_ASSIGN_OR_RETURN(update_set_, update_layout_.allocate());
+  const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  FieldSetsDesc desc;
+  desc.name = "field";
+  desc.sampling = {{gpu::kFieldBindingConstants},
+                   {gpu::kFieldBindingProbes},
+                   {gpu::kFieldBindingIrradiance, sampled},
+                   {gpu::kFieldBindingDistance, sampled}};
+  desc.update = {{gpu::kFieldUpdateBindingRays},
+                 {gpu::kFieldUpdateBindingIrradianceOut, storage},
+                 {gpu::kFieldUpdateBindingDistanceOut, storage},
+                 {gpu::kFieldUpdateBindingProbeList}};
+  desc.query = {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}};
+  desc.query_kernel = "field_query";
+  desc.push_constant_bytes = sizeof(gpu::FieldDispatch);
+  desc.workgroup = kLinearWorkgroup;
+  desc.timed_passes = kMaxTimedPasses;
+  DDGI_ASSIGN_OR_RETURN(sets_, FieldSets::create(context_, scene_, desc, backend));
 
-  const std::vector<VkDescriptorSetLayout> update_layouts = {
-      scene_.layout(), update_layout_.handle(), sampling_layout_.handle()};
+  const std::vector<VkDescriptorSetLayout> update_layouts = sets_.update_layouts();
   const uint32_t push = sizeof(gpu::FieldDispatch);
   auto kernel = [&](const char* name, bool traces) {
     return vk::Kernel::create(context_, {name, traces, update_layouts, push, kLinearWorkgroup},
@@ -131,20 +119,6 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
   DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
   DDGI_ASSIGN_OR_RETURN(manage_, kernel("field_probes", false));
-  DDGI_ASSIGN_OR_RETURN(
-      query_,
-      vk::Kernel::create(context_,
-                         {"field_query",
-                          false,
-                          {scene_.layout(), query_layout_.handle(), sampling_layout_.handle()},
-                          push,
-                          kLinearWorkgroup},
-                         backend));
-  DDGI_ASSIGN_OR_RETURN(timer_, vk::GpuTimer::create(context_, kMaxTimedPasses));
-  DDGI_ASSIGN_OR_RETURN(
-      sampler_,
-      vk::Sampler::create(context_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "atlas sampler"));
   return ok_status();
 }
 
@@ -190,15 +164,15 @@ Status IrradianceField::create_resources() {
                                       VK_FORMAT_R32G32_SFLOAT, image_usage, "distance atlas"));
   gpu_bytes_ = context_.allocated_bytes() - before;
 
-  vk::DescriptorWriter(sampling_set_)
+  vk::DescriptorWriter(sets_.sampling_set())
       .buffer(gpu::kFieldBindingConstants, constants_)
       .buffer(gpu::kFieldBindingProbes, probes_)
-      .sampled_image(gpu::kFieldBindingIrradiance, irradiance_, sampler_.handle(), 0,
+      .sampled_image(gpu::kFieldBindingIrradiance, irradiance_, sets_.sampler().handle(), 0,
                      VK_IMAGE_LAYOUT_GENERAL)
-      .sampled_image(gpu::kFieldBindingDistance, distance_, sampler_.handle(), 0,
+      .sampled_image(gpu::kFieldBindingDistance, distance_, sets_.sampler().handle(), 0,
                      VK_IMAGE_LAYOUT_GENERAL)
       .apply(context_.device());
-  vk::DescriptorWriter(update_set_)
+  vk::DescriptorWriter(sets_.update_set())
       .buffer(gpu::kFieldUpdateBindingRays, rays_)
       .storage_image(gpu::kFieldUpdateBindingIrradianceOut, irradiance_)
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
@@ -257,7 +231,7 @@ vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel
   pass.name = name;
   pass.group = vk::PassGroup::kIrradianceField;
   pass.kernel = &kernel;
-  pass.sets = {scene_.descriptor_set(), update_set_, sampling_set_};
+  pass.sets = {scene_.descriptor_set(), sets_.update_set(), sets_.sampling_set()};
   if (shadow_set) pass.sets.push_back(shadow_set);
   pass.push_constants = vk::Pass::push(push);
   pass.size = d.size;
@@ -371,19 +345,11 @@ Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
 
 Status IrradianceField::set_params(const IrradianceFieldParams& params) {
   DDGI_TRY(validate(params));
-  const bool rebuild = grid_changed(params_, params);
-  // A refused grid changes nothing: the old field and its history keep running.
-  if (rebuild) DDGI_TRY(check_budget(context_, params, gpu_bytes_));
   const IrradianceFieldParams old = params_;
-  params_ = params;
-  Status status = rebuild ? create_resources() : ok_status();
-  if (!status.ok()) {
-    // An allocation failed after the old resources were freed (another session took memory
-    // meanwhile): the old grid again, starting over, is the best left.
-    params_ = old;
-    DDGI_TRY(create_resources());
-    return status.error();
-  }
+  DDGI_TRY(replace_params<IrradianceFieldParams>(
+      params_, params, grid_changed(old, params),
+      [&](const IrradianceFieldParams& next) { return check_budget(context_, next, gpu_bytes_); },
+      [&] { return create_resources(); }));
   if (old.origin != params.origin || old.spacing != params.spacing) return reset();
   return ok_status();
 }
@@ -483,12 +449,12 @@ Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, Direct
   for (uint32_t i = 0; i < count; ++i) {
     const std::vector<vk::Pass> passes = update_passes(direct_mode);
     DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-      timer_.begin_frame(cmd);
-      vk::record_passes(cmd, &timer_, passes);
+      sets_.timer().begin_frame(cmd);
+      vk::record_passes(cmd, &sets_.timer(), passes);
     }));
   }
   context_.collect_garbage();
-  return timer_.read();
+  return sets_.timer().read();
 }
 
 Status IrradianceField::warm_up(uint32_t count, DirectMode direct_mode) {
@@ -507,27 +473,11 @@ Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<Irradian
     input.push_back(
         {q.position, 0.0f, glm::normalize(q.normal), 0.0f, glm::normalize(q.to_viewer), 0.0f});
   }
-  if (input.empty()) return std::vector<glm::vec3>{};
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer in,
-                        vk::upload_vector<gpu::FieldQuery>(
-                            context_, input, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "queries"));
   DDGI_ASSIGN_OR_RETURN(
-      vk::Buffer out,
-      vk::Buffer::create(context_, input.size() * sizeof(glm::vec4),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                         vk::MemoryUsage::kDeviceLocal, "query answers"));
-  vk::DescriptorWriter(query_set_)
-      .buffer(gpu::kFieldQueryBindingQueries, in)
-      .buffer(gpu::kFieldQueryBindingAnswers, out)
-      .apply(context_.device());
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
-  const uint32_t count = static_cast<uint32_t>(input.size());
-  const vk::LinearDispatch d = vk::linear_dispatch(count);
-  const gpu::FieldDispatch push{count, d.row_width, 0, 1, 1, 0, 0, 0};
-  DDGI_TRY(context_.submit_and_wait(
-      [&](VkCommandBuffer cmd) { query_.dispatch(cmd, sets, &push, d.size); }));
-  std::vector<glm::vec4> answers(input.size());
-  DDGI_TRY(vk::download_buffer(context_, out, answers.data(), answers.size() * sizeof(glm::vec4)));
+      const std::vector<glm::vec4> answers,
+      (sets_.query<gpu::FieldQuery, glm::vec4>(input, [](uint32_t count, uint32_t row_width) {
+        return vk::Pass::push(gpu::FieldDispatch{count, row_width, 0, 1, 1, 0, 0, 0});
+      })));
   std::vector<glm::vec3> result;
   for (const glm::vec4& a : answers) result.push_back(glm::vec3(a));
   return result;

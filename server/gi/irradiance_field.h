@@ -9,6 +9,7 @@
 
 #include "core/result.h"
 #include "gi/field_params.h"
+#include "gi/field_sets.h"
 #include "gi/probe_scheduler.h"
 #include "gi/shadow_field.h"
 #include "gpu_scene/frame_types.h"
@@ -76,8 +77,8 @@ class IrradianceField {
   Result<AtlasImage> read_irradiance_atlas();
   Result<AtlasImage> read_distance_atlas();
 
-  VkDescriptorSetLayout sampling_layout() const { return sampling_layout_.handle(); }
-  VkDescriptorSet sampling_set() const { return sampling_set_; }
+  VkDescriptorSetLayout sampling_layout() const { return sets_.sampling_layout(); }
+  VkDescriptorSet sampling_set() const { return sets_.sampling_set(); }
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   uint64_t updates() const { return update_index_; }
   ProbeStateCounts probe_counts() const { return scheduler_.counts(); }
@@ -127,21 +128,14 @@ class IrradianceField {
   float hysteresis_cap_ = 1.0f;  // warm_up() lowers the hysteresis below this for a while
   uint64_t gpu_bytes_ = 0;
 
-  vk::DescriptorLayout sampling_layout_;  // set 2
-  vk::DescriptorLayout update_layout_;    // set 1 of update kernels
-  vk::DescriptorLayout query_layout_;     // set 1 of the query kernel
-  VkDescriptorSet sampling_set_ = VK_NULL_HANDLE;
-  VkDescriptorSet update_set_ = VK_NULL_HANDLE;
-  VkDescriptorSet query_set_ = VK_NULL_HANDLE;  // rewritten by every query
+  FieldSets sets_;  // sampling (set 2 of frames), update and query sets; query kernel; timer
   vk::Kernel trace_;
   vk::Kernel shade_;
   vk::Kernel shade_with_shadow_field_;  // only with a shadow field
   vk::Kernel blend_irradiance_;
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
-  vk::Kernel query_;
   vk::Kernel manage_;
-  vk::GpuTimer timer_;
 
   vk::Buffer constants_;
   vk::Buffer probes_;
@@ -156,7 +150,6 @@ class IrradianceField {
   uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
-  vk::Sampler sampler_;
 };
 
 }  // namespace ddgi

@@ -10,14 +10,6 @@
 namespace ddgi {
 namespace {
 
-static_assert(sizeof(gpu::ShadowFieldConstants) == 192 &&
-                  sizeof(gpu::ShadowFieldConstants) <= 65536,
-              "ShadowFieldConstants is written with vkCmdUpdateBuffer");
-static_assert(sizeof(gpu::ShadowRay) == 112);
-static_assert(sizeof(gpu::ShadowDispatch) == 16);
-static_assert(sizeof(gpu::ShadowQuery) == 48);
-static_assert(sizeof(gpu::ShadowAnswer) == 80);
-
 constexpr uint32_t kMaxTimedPasses = 8;
 constexpr uint32_t kMaxQuerySamples = 4096;
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
@@ -85,30 +77,24 @@ Result<std::unique_ptr<ShadowField>> ShadowField::create(vk::Context& context, G
 Status ShadowField::create_layouts_and_kernels(vk::TraceBackend backend) {
   const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  DDGI_ASSIGN_OR_RETURN(sampling_layout_,
-                        vk::DescriptorLayout::create(context_,
-                                                     {{gpu::kShadowBindingConstants},
-                                                      {gpu::kShadowBindingVisibility, sampled},
-                                                      {gpu::kShadowBindingMoments, sampled}},
-                                                     1, "shadow field sampling set"));
-  DDGI_ASSIGN_OR_RETURN(update_layout_, vk::DescriptorLayout::create(
-                                            context_,
-                                            {{gpu::kShadowUpdateBindingRays},
-                                             {gpu::kShadowUpdateBindingVisibilityOut, storage},
-                                             {gpu::kShadowUpdateBindingMomentsOut, storage}},
-                                            1, "shadow field update set"));
-  DDGI_ASSIGN_OR_RETURN(
-      query_layout_,
-      vk::DescriptorLayout::create(
-          context_, {{gpu::kShadowQueryBindingQueries}, {gpu::kShadowQueryBindingAnswers}}, 1,
-          "shadow field query set"));
-  DDGI_ASSIGN_OR_RETURN(sampling_set_, sampling_layout_.allocate());
-  DDGI_ASSIGN_OR_RETURN(update_set_, update_layout_.allocate());
-  DDGI_ASSIGN_OR_RETURN(query_set_, query_layout_.allocate());
+  FieldSetsDesc desc;
+  desc.name = "shadow field";
+  desc.sampling = {{gpu::kShadowBindingConstants},
+                   {gpu::kShadowBindingVisibility, sampled},
+                   {gpu::kShadowBindingMoments, sampled}};
+  desc.update = {{gpu::kShadowUpdateBindingRays},
+                 {gpu::kShadowUpdateBindingVisibilityOut, storage},
+                 {gpu::kShadowUpdateBindingMomentsOut, storage}};
+  desc.query = {{gpu::kShadowQueryBindingQueries}, {gpu::kShadowQueryBindingAnswers}};
+  desc.query_kernel = "shadow_query";
+  desc.query_traces = true;
+  desc.push_constant_bytes = sizeof(gpu::ShadowDispatch);
+  desc.workgroup = kLinearWorkgroup;
+  desc.timed_passes = kMaxTimedPasses;
+  DDGI_ASSIGN_OR_RETURN(sets_, FieldSets::create(context_, scene_, desc, backend));
 
   const uint32_t push = sizeof(gpu::ShadowDispatch);
-  const std::vector<VkDescriptorSetLayout> update_layouts = {
-      scene_.layout(), update_layout_.handle(), sampling_layout_.handle()};
+  const std::vector<VkDescriptorSetLayout> update_layouts = sets_.update_layouts();
   auto kernel = [&](const char* name, bool traces) {
     return vk::Kernel::create(context_, {name, traces, update_layouts, push, kLinearWorkgroup},
                               backend);
@@ -116,20 +102,6 @@ Status ShadowField::create_layouts_and_kernels(vk::TraceBackend backend) {
   DDGI_ASSIGN_OR_RETURN(trace_, kernel("shadow_trace", true));
   DDGI_ASSIGN_OR_RETURN(blend_, kernel("shadow_blend", false));
   DDGI_ASSIGN_OR_RETURN(borders_, kernel("shadow_borders", false));
-  DDGI_ASSIGN_OR_RETURN(
-      query_,
-      vk::Kernel::create(context_,
-                         {"shadow_query",
-                          true,
-                          {scene_.layout(), query_layout_.handle(), sampling_layout_.handle()},
-                          push,
-                          kLinearWorkgroup},
-                         backend));
-  DDGI_ASSIGN_OR_RETURN(timer_, vk::GpuTimer::create(context_, kMaxTimedPasses));
-  DDGI_ASSIGN_OR_RETURN(
-      sampler_,
-      vk::Sampler::create(context_, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "shadow atlas sampler"));
   return ok_status();
 }
 
@@ -165,14 +137,14 @@ Status ShadowField::create_resources() {
                                      VK_FORMAT_R32G32B32A32_SFLOAT, usage, "shadow moments atlas"));
   gpu_bytes_ = context_.allocated_bytes() - before;
 
-  vk::DescriptorWriter(sampling_set_)
+  vk::DescriptorWriter(sets_.sampling_set())
       .buffer(gpu::kShadowBindingConstants, constants_)
-      .sampled_image(gpu::kShadowBindingVisibility, visibility_, sampler_.handle(), 0,
+      .sampled_image(gpu::kShadowBindingVisibility, visibility_, sets_.sampler().handle(), 0,
                      VK_IMAGE_LAYOUT_GENERAL)
-      .sampled_image(gpu::kShadowBindingMoments, moments_, sampler_.handle(), 0,
+      .sampled_image(gpu::kShadowBindingMoments, moments_, sets_.sampler().handle(), 0,
                      VK_IMAGE_LAYOUT_GENERAL)
       .apply(context_.device());
-  vk::DescriptorWriter(update_set_)
+  vk::DescriptorWriter(sets_.update_set())
       .buffer(gpu::kShadowUpdateBindingRays, rays_)
       .storage_image(gpu::kShadowUpdateBindingVisibilityOut, visibility_)
       .storage_image(gpu::kShadowUpdateBindingMomentsOut, moments_)
@@ -204,29 +176,20 @@ Status ShadowField::reset() {
 
 Status ShadowField::set_params(const ShadowFieldParams& params) {
   DDGI_TRY(validate(params));
-  const bool rebuild = layout_changed(params_, params);
-  // A refused grid changes nothing: the old field and its history keep running.
-  if (rebuild) DDGI_TRY(check_budget(context_, params, gpu_bytes_));
   const ShadowFieldParams old = params_;
-  params_ = params;
-  Status status = rebuild ? create_resources() : ok_status();
-  if (!status.ok()) {
-    // An allocation failed after the old resources were freed (another session took memory
-    // meanwhile): the old grid again, starting over, is the best left.
-    params_ = old;
-    DDGI_TRY(create_resources());
-    return status.error();
-  }
+  DDGI_TRY(replace_params<ShadowFieldParams>(
+      params_, params, layout_changed(old, params),
+      [&](const ShadowFieldParams& next) { return check_budget(context_, next, gpu_bytes_); },
+      [&] { return create_resources(); }));
   if (old.origin != params.origin || old.spacing != params.spacing ||
       old.split_update != params.split_update) {
     return reset();
   }
   // Sampling reads the constants: bring them up to date before the next update does.
-  const gpu::ShadowFieldConstants c = constants(DirectMode::kShadowField);
-  return context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
-    vk::barrier_all(cmd);
-  });
+  const vk::Pass upload = vk::upload_pass("shadow constants", vk::PassGroup::kShadowField,
+                                          constants_, constants(DirectMode::kShadowField));
+  return context_.submit_and_wait(
+      [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, std::span(&upload, 1)); });
 }
 
 uint32_t ShadowField::kept_lights() const {
@@ -289,7 +252,7 @@ std::vector<vk::Pass> ShadowField::update_passes(DirectMode direct_mode) {
     p.name = name;
     p.group = vk::PassGroup::kShadowField;
     p.kernel = &kernel;
-    p.sets = {scene_.descriptor_set(), update_set_, sampling_set_};
+    p.sets = {scene_.descriptor_set(), sets_.update_set(), sets_.sampling_set()};
     p.push_constants = vk::Pass::push(gpu::ShadowDispatch{count, d.row_width, mode, per_probe});
     p.size = d.size;
     p.reads = std::move(reads);
@@ -322,12 +285,12 @@ Result<std::vector<vk::PassTime>> ShadowField::update(uint32_t count, DirectMode
   for (uint32_t i = 0; i < count; ++i) {
     const std::vector<vk::Pass> passes = update_passes(direct_mode);
     DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-      timer_.begin_frame(cmd);
-      vk::record_passes(cmd, &timer_, passes);
+      sets_.timer().begin_frame(cmd);
+      vk::record_passes(cmd, &sets_.timer(), passes);
     }));
   }
   context_.collect_garbage();
-  return timer_.read();
+  return sets_.timer().read();
 }
 
 Result<std::vector<ShadowFieldAnswer>> ShadowField::query(
@@ -352,30 +315,16 @@ Result<std::vector<ShadowFieldAnswer>> ShadowField::query(
     input.push_back({q.position, q.traced_samples, glm::normalize(q.normal), q.ao_samples,
                      glm::normalize(q.to_viewer), static_cast<uint32_t>(i)});
   }
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer in,
-                        vk::upload_vector<gpu::ShadowQuery>(
-                            context_, input, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow queries"));
-  DDGI_ASSIGN_OR_RETURN(
-      vk::Buffer out,
-      vk::Buffer::create(context_, input.size() * sizeof(gpu::ShadowAnswer),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                         vk::MemoryUsage::kDeviceLocal, "shadow answers"));
-  vk::DescriptorWriter(query_set_)
-      .buffer(gpu::kShadowQueryBindingQueries, in)
-      .buffer(gpu::kShadowQueryBindingAnswers, out)
-      .apply(context_.device());
-  const VkDescriptorSet sets[] = {scene_.descriptor_set(), query_set_, sampling_set_};
-  const uint32_t count = static_cast<uint32_t>(input.size());
-  const vk::LinearDispatch d = vk::linear_dispatch(count);
-  const gpu::ShadowDispatch push{count, d.row_width, 0, 1};
-  const gpu::ShadowFieldConstants c = constants(DirectMode::kShadowField);
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
-    vk::barrier_all(cmd);
-    query_.dispatch(cmd, sets, &push, d.size);
-  }));
-  std::vector<gpu::ShadowAnswer> raw(input.size());
-  DDGI_TRY(vk::download_buffer(context_, out, raw.data(), raw.size() * sizeof(raw[0])));
+  // Sampling reads the constants: the query's first, in the shadow-field mode.
+  std::vector<vk::Pass> before = {vk::upload_pass("shadow constants", vk::PassGroup::kShadowField,
+                                                  constants_, constants(DirectMode::kShadowField))};
+  DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShadowAnswer> raw,
+                        (sets_.query<gpu::ShadowQuery, gpu::ShadowAnswer>(
+                            input,
+                            [](uint32_t count, uint32_t row_width) {
+                              return vk::Pass::push(gpu::ShadowDispatch{count, row_width, 0, 1});
+                            },
+                            std::move(before))));
 
   std::vector<ShadowFieldAnswer> answers(raw.size());
   for (size_t i = 0; i < raw.size(); ++i) {

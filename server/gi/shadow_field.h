@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "gi/field_sets.h"
 #include "gi/shadow_params.h"
 #include "gpu_scene/frame_types.h"
 #include "gpu_scene/gpu_scene.h"
@@ -70,8 +71,8 @@ class ShadowField {
   const vk::Image& visibility_atlas() const { return visibility_; }
   const vk::Image& moments_atlas() const { return moments_; }
   const ShadowAtlasLayout& atlas_layout() const { return layout_; }
-  VkDescriptorSetLayout sampling_layout() const { return sampling_layout_.handle(); }
-  VkDescriptorSet sampling_set() const { return sampling_set_; }
+  VkDescriptorSetLayout sampling_layout() const { return sets_.sampling_layout(); }
+  VkDescriptorSet sampling_set() const { return sets_.sampling_set(); }
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   uint64_t updates() const { return update_index_; }
   // Rays one update traces: probe rays plus one shadow ray per kept light per probe ray (plus
@@ -93,23 +94,17 @@ class ShadowField {
   bool ao_history_ = false;  // an update has blended AO since the last reset
   uint64_t gpu_bytes_ = 0;
 
-  vk::DescriptorLayout sampling_layout_;  // set 2 of its kernels and of the frame's direct pass
-  vk::DescriptorLayout update_layout_;    // set 1 of the update kernels
-  vk::DescriptorLayout query_layout_;     // set 1 of the query kernel
-  VkDescriptorSet sampling_set_ = VK_NULL_HANDLE;
-  VkDescriptorSet update_set_ = VK_NULL_HANDLE;
-  VkDescriptorSet query_set_ = VK_NULL_HANDLE;  // rewritten by every query
+  // Sampling (set 2 of its kernels and of the frame's direct pass), update and query sets; the
+  // query kernel; the timer of standalone updates; the atlas sampler.
+  FieldSets sets_;
   vk::Kernel trace_;
   vk::Kernel blend_;
   vk::Kernel borders_;
-  vk::Kernel query_;
-  vk::GpuTimer timer_;
 
   vk::Buffer constants_;
   vk::Buffer rays_;
   vk::Image visibility_;
   vk::Image moments_;
-  vk::Sampler sampler_;
 };
 
 }  // namespace ddgi

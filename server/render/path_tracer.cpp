@@ -13,7 +13,6 @@ namespace {
 constexpr uint32_t kMaxBounces = 1024;
 constexpr uint32_t kMaxSamplesPerCall = 65536;
 
-static_assert(sizeof(gpu::PathTraceConstants) == 96);
 static_assert(sizeof(gpu::PathTraceConstants) <= 128, "push constants guaranteed by Vulkan");
 // The tone-mapping kernel reads the frame set's bindings; ours must line up with them.
 static_assert(gpu::kPathTraceSet == gpu::kFrameSet);

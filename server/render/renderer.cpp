@@ -10,13 +10,6 @@
 namespace ddgi {
 namespace {
 
-static_assert(sizeof(gpu::GBufferTexel) == 40);
-static_assert(sizeof(gpu::PrimaryConstants) == 64);
-static_assert(sizeof(gpu::DirectConstants) == 48);
-static_assert(sizeof(gpu::TonemapConstants) == 16);
-static_assert(sizeof(gpu::IndirectConstants) == 32);
-static_assert(sizeof(gpu::FieldViewConstants) == 64);
-
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

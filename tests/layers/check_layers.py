@@ -68,8 +68,10 @@ def main():
         if not base.is_dir():
             problems.append(f"layer table: folder {folder} of {library} does not exist")
             continue
+        # A nested folder with its own row (proto/rpc/ inside proto/) is that row's.
+        nested = [root / f for f in folders if f != folder and f.startswith(folder + "/")]
         for path in sorted(base.rglob("*")):
-            if path.suffix not in SOURCES:
+            if path.suffix not in SOURCES or any(n in path.parents for n in nested):
                 continue
             for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
                 match = INCLUDE.match(line)
