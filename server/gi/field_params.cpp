@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "gi/probe_grid.h"
 #include "shared/field_data.h"
 
 namespace ddgi {
@@ -40,8 +41,7 @@ DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams*
 }
 
 uint64_t probe_count(const IrradianceFieldParams& p) {
-  return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
-         uint64_t(std::max(p.counts.z, 0));
+  return grid_probe_count(p.counts);
 }
 
 Status validate(const IrradianceFieldParams& p) {
@@ -105,9 +105,9 @@ Status validate(const IrradianceFieldParams& p) {
 
 AtlasLayout atlas_layout(const IrradianceFieldParams& p) {
   AtlasLayout layout;
-  const uint64_t probes = std::max<uint64_t>(probe_count(p), 1);
-  layout.tiles_per_row = static_cast<uint32_t>(std::ceil(std::sqrt(double(probes))));
-  layout.rows = static_cast<uint32_t>((probes + layout.tiles_per_row - 1) / layout.tiles_per_row);
+  const SquareTiling tiling = square_tiling(probe_count(p));
+  layout.tiles_per_row = tiling.tiles_per_row;
+  layout.rows = tiling.rows;
   const uint32_t irradiance_tile = p.irradiance_texels + 2 * gpu::kAtlasBorder;
   const uint32_t distance_tile = p.distance_texels + 2 * gpu::kAtlasBorder;
   layout.irradiance_size = {layout.tiles_per_row * irradiance_tile, layout.rows * irradiance_tile};
@@ -117,23 +117,11 @@ AtlasLayout atlas_layout(const IrradianceFieldParams& p) {
 
 IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes,
                                          IrradianceFieldParams base) {
-  if (bounds.empty()) {
-    base.origin = glm::vec3(0.0f);
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  const glm::vec3 extent = glm::max(bounds.extent(), glm::vec3(0.0f));
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  if (!(largest > 0.0f)) {
-    base.origin = bounds.center();
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  // Axes thinner than 1% of the largest count as flat: one probe layer.
-  const glm::vec3 used = glm::max(extent, glm::vec3(largest * 0.01f));
-  const float volume = used.x * used.y * used.z;
+  const GridFitStart fit = start_grid_fit(bounds);
+  if (fit.single) return placed(base, *fit.single);
+  const glm::vec3 extent = fit.extent;
+  // Flat axes (thinner than 1% of the largest) get one probe layer.
+  const float volume = fit.used.x * fit.used.y * fit.used.z;
   const float spacing = std::cbrt(volume / float(std::max(target_probes, 1u)));
   for (int axis = 0; axis < 3; ++axis) {
     const int count = static_cast<int>(std::lround(extent[axis] / spacing));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "gi/probe_grid.h"
 #include "shared/shadow_field_data.h"
 
 namespace ddgi {
@@ -30,8 +31,7 @@ Status in_range(const char* name, T value, T min, T max) {
 }  // namespace
 
 uint64_t probe_count(const ShadowFieldParams& p) {
-  return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
-         uint64_t(std::max(p.counts.z, 0));
+  return grid_probe_count(p.counts);
 }
 
 Status validate(const ShadowFieldParams& p) {
@@ -80,10 +80,9 @@ Status validate(const ShadowFieldParams& p) {
 
 ShadowAtlasLayout shadow_atlas_layout(const ShadowFieldParams& p) {
   ShadowAtlasLayout layout;
-  const uint64_t probes = std::max<uint64_t>(probe_count(p), 1);
-  layout.tiles_per_row = static_cast<uint32_t>(std::ceil(std::sqrt(double(probes))));
-  layout.tile_rows =
-      static_cast<uint32_t>((probes + layout.tiles_per_row - 1) / layout.tiles_per_row);
+  const SquareTiling tiling = square_tiling(probe_count(p));
+  layout.tiles_per_row = tiling.tiles_per_row;
+  layout.tile_rows = tiling.rows;
   layout.light_groups =
       (std::max(p.max_lights, 1u) + gpu::kShadowLightsPerGroup - 1) / gpu::kShadowLightsPerGroup;
   const uint32_t tile = p.texels + 2 * gpu::kShadowAtlasBorder;
@@ -94,28 +93,15 @@ ShadowAtlasLayout shadow_atlas_layout(const ShadowFieldParams& p) {
 
 ShadowFieldParams fit_shadow_grid(const Bounds& bounds, uint32_t target_cells,
                                   ShadowFieldParams base) {
-  if (bounds.empty()) {
-    base.origin = glm::vec3(0.0f);
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  const glm::vec3 extent = glm::max(bounds.extent(), glm::vec3(0.0f));
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  if (!(largest > 0.0f)) {
-    base.origin = bounds.center();
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  // Axes thinner than 1% of the largest count as flat.
-  const glm::vec3 used = glm::max(extent, glm::vec3(largest * 0.01f));
+  const GridFitStart fit = start_grid_fit(bounds);
+  if (fit.single) return placed(base, *fit.single);
+  const glm::vec3 used = fit.used;
   const float target = std::cbrt(used.x * used.y * used.z / float(std::max(target_cells, 1u)));
   for (int axis = 0; axis < 3; ++axis) {
     // Cell-centred over the bounds plus one layer half a cell outside each face: a surface on
     // the bounds (a floor, the top of the tallest object) has probes in front of it, which
     // cosine weighting needs. A flat axis gets one layer on each side of its plane.
-    const bool flat = extent[axis] <= largest * 0.01f;
+    const bool flat = fit.extent[axis] <= fit.largest * 0.01f;
     const int cells = flat ? 1 : std::max(1, static_cast<int>(std::lround(used[axis] / target)));
     base.spacing[axis] = flat ? target : used[axis] / float(cells);
     base.counts[axis] = std::min(flat ? 2 : cells + 2, kMaxCountPerAxis);
