@@ -1,6 +1,7 @@
 // What the probe grids of the irradiance field and the shadow field have in common: the probe
 // count of a grid, the near-square tiling of one atlas tile per probe, and how fitting a grid to
-// bounds starts. Each field keeps its own rules (cell-centred probes, or an extra outer layer).
+// bounds starts, and the grid's parameters in a field's table. Each field keeps its own rules
+// (cell-centred probes, or an extra outer layer).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/param_table.h"
 #include "scene/scene.h"
 
 namespace ddgi {
@@ -47,6 +49,19 @@ Params placed(Params params, const GridPlacement& grid) {
   params.spacing = grid.spacing;
   params.counts = grid.counts;
   return params;
+}
+
+// The grid's entries of a field's parameter table (`Params` has origin, spacing and counts).
+template <typename Params>
+std::vector<ParamSpec<Params>> grid_params(int max_count_per_axis, uint64_t max_probes) {
+  return {
+      param::vec3("origin", &Params::origin, param::VectorRange::kFinite,
+                  "world position of probe (0,0,0)"),
+      param::vec3("spacing", &Params::spacing, param::VectorRange::kPositive,
+                  "distance between probes per axis"),
+      param::probe_counts("counts", &Params::counts, 1, max_count_per_axis, max_probes,
+                          "probes per axis"),
+  };
 }
 
 }  // namespace ddgi

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "gi/probe_grid.h"
 #include "shared/shadow_field_data.h"
@@ -13,59 +12,60 @@ namespace {
 constexpr int kMaxCountPerAxis = 256;
 constexpr uint64_t kMaxProbes = 1'048'576;
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-template <typename T>
-Status in_range(const char* name, T value, T min, T max) {
-  if (!(value >= min && value <= max)) {
-    std::ostringstream out;
-    out << "shadow field " << name << " must be in [" << min << ", " << max << "] (got " << value
-        << ")";
-    return invalid_argument(out.str());
-  }
-  return ok_status();
-}
-
 }  // namespace
+
+const ParamTable<ShadowFieldParams>& shadow_param_table() {
+  using P = ShadowFieldParams;
+  // The order is that of --shadow-field help and of the RPC's parameter list.
+  static const ParamTable<P> table(
+      "shadow field parameter", "shadow field ", grid_params<P>(kMaxCountPerAxis, kMaxProbes),
+      {
+          param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
+                        "probe rays per probe per update"),
+          param::number("max_lights", &P::max_lights, 1, gpu::kShadowMaxLights,
+                        "lights kept in the atlas (first in scene order)"),
+          param::choice("overflow", &P::overflow,
+                        {{"shadow-rays", ShadowOverflow::kTracedShadows},
+                         {"unshadowed", ShadowOverflow::kUnshadowed}},
+                        "lights past max_lights"),
+          param::flag("split_update", &P::split_update, param::BoolWords::kOnOff,
+                      "shadow rays one update after their probe rays (thesis)"),
+          param::number("max_ray_distance", &P::max_ray_distance, 1e-30f, 1e30f,
+                        "longer probe rays see nothing"),
+          param::number("ao_distance", &P::ao_distance, 1e-30f, 1e30f,
+                        "longer AO rays count as open sky"),
+          param::number("texels", &P::texels, 4, 64, "octahedral map side"),
+          param::number("hysteresis", &P::hysteresis, 0.0f, 0.999f, "history weight per update"),
+          param::number("visibility_exponent", &P::visibility_exponent, 1.0f, 1000.0f,
+                        "power-cosine exponent of the visibility blend"),
+          param::number("distance_exponent", &P::distance_exponent, 1.0f, 1000.0f,
+                        "power-cosine exponent of the distance blend"),
+          param::number("backface_distance_scale", &P::backface_distance_scale, 0.0f, 1.0f,
+                        "back-face distance factor"),
+          param::choice("weighting", &P::weighting,
+                        {{"cosine", ShadowWeighting::kCosine}, {"wrap", ShadowWeighting::kWrap}},
+                        "probe weights when sampling"),
+          param::number("normal_bias", &P::normal_bias, 0.0f, 1.0f,
+                        "shading-point offset along the normal (x spacing)"),
+          param::number("view_bias", &P::view_bias, 0.0f, 1.0f,
+                        "shading-point offset towards the viewer (x spacing)"),
+          param::number("sharpening", &P::sharpening, 1.0f, 16.0f,
+                        "power applied to sampled visibility"),
+          param::number("weight_crush_threshold", &P::weight_crush_threshold, 0.0f, 1.0f,
+                        "probe weights below are crushed"),
+          param::number("seed", &P::seed, "seed of the ray rotations and jitter"),
+      });
+  return table;
+}
+
+template class ParamTable<ShadowFieldParams>;
 
 uint64_t probe_count(const ShadowFieldParams& p) {
   return grid_probe_count(p.counts);
 }
 
 Status validate(const ShadowFieldParams& p) {
-  if (!finite(p.origin)) return invalid_argument("shadow field origin must be finite");
-  if (!finite(p.spacing) || !(p.spacing.x > 0.0f && p.spacing.y > 0.0f && p.spacing.z > 0.0f)) {
-    return invalid_argument("shadow field spacing must be finite and > 0 on every axis");
-  }
-  const char* axes[] = {"counts.x", "counts.y", "counts.z"};
-  for (int axis = 0; axis < 3; ++axis) {
-    DDGI_TRY(in_range(axes[axis], p.counts[axis], 1, kMaxCountPerAxis));
-  }
-  if (probe_count(p) > kMaxProbes) {
-    return invalid_argument("shadow field counts give " + std::to_string(probe_count(p)) +
-                            " probes; at most " + std::to_string(kMaxProbes) + " are allowed");
-  }
-  DDGI_TRY(in_range("rays_per_probe", p.rays_per_probe, 1u, 1024u));
-  DDGI_TRY(in_range("max_lights", p.max_lights, 1u, gpu::kShadowMaxLights));
-  if (p.overflow != ShadowOverflow::kTracedShadows && p.overflow != ShadowOverflow::kUnshadowed) {
-    return invalid_argument("shadow field overflow must be shadow-rays or unshadowed");
-  }
-  DDGI_TRY(in_range("max_ray_distance", p.max_ray_distance, 1e-30f, 1e30f));
-  DDGI_TRY(in_range("ao_distance", p.ao_distance, 1e-30f, 1e30f));
-  DDGI_TRY(in_range("texels", p.texels, 4u, 64u));
-  DDGI_TRY(in_range("hysteresis", p.hysteresis, 0.0f, 0.999f));
-  DDGI_TRY(in_range("visibility_exponent", p.visibility_exponent, 1.0f, 1000.0f));
-  DDGI_TRY(in_range("distance_exponent", p.distance_exponent, 1.0f, 1000.0f));
-  DDGI_TRY(in_range("backface_distance_scale", p.backface_distance_scale, 0.0f, 1.0f));
-  if (p.weighting != ShadowWeighting::kCosine && p.weighting != ShadowWeighting::kWrap) {
-    return invalid_argument("shadow field weighting must be cosine or wrap");
-  }
-  DDGI_TRY(in_range("normal_bias", p.normal_bias, 0.0f, 1.0f));
-  DDGI_TRY(in_range("view_bias", p.view_bias, 0.0f, 1.0f));
-  DDGI_TRY(in_range("sharpening", p.sharpening, 1.0f, 16.0f));
-  DDGI_TRY(in_range("weight_crush_threshold", p.weight_crush_threshold, 0.0f, 1.0f));
+  DDGI_TRY(shadow_param_table().check(p));
   const ShadowAtlasLayout layout = shadow_atlas_layout(p);
   const glm::uvec2 largest = glm::max(layout.visibility_size, layout.moments_size);
   if (largest.x > gpu::kShadowMaxAtlasDimension || largest.y > gpu::kShadowMaxAtlasDimension) {

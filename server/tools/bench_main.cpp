@@ -10,7 +10,7 @@
 
 #include "core/flags.h"
 #include "core/log.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/irradiance_field.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
@@ -128,7 +128,7 @@ Status run(int argc, char** argv) {
         DDGI_ASSIGN_OR_RETURN(IrradianceFieldParams params,
                               grid_for(scene, grid, static_cast<uint32_t>(probes)));
         params.rays_per_probe = static_cast<uint32_t>(rays);
-        DDGI_TRY(apply_field_assignments(params, flags.get_all("field")));
+        DDGI_TRY(field_param_table().apply(params, flags.get_all("field")));
         DDGI_ASSIGN_OR_RETURN(auto field, IrradianceField::create(*context, *gpu_scene, params,
                                                                   context->default_backend()));
         DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(*context, *gpu_scene, field.get(),

@@ -12,7 +12,7 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/irradiance_field.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
@@ -201,8 +201,8 @@ Status run(int argc, char** argv) {
 
     for (const Config& config : configs) {
       IrradianceFieldParams params = default_field_params(scene);
-      DDGI_TRY(apply_field_assignments(params, flags.get_all("field")));
-      DDGI_TRY(apply_field_assignments(params, config.assignments));
+      DDGI_TRY(field_param_table().apply(params, flags.get_all("field")));
+      DDGI_TRY(field_param_table().apply(params, config.assignments));
       DDGI_ASSIGN_OR_RETURN(auto field,
                             IrradianceField::create(*context, *gpu_scene, params, backend));
       DDGI_ASSIGN_OR_RETURN(auto renderer,

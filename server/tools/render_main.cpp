@@ -7,9 +7,9 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/irradiance_field.h"
-#include "gi/shadow_params_table.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
@@ -126,9 +126,7 @@ Status run(int argc, char** argv) {
   settings.light_samples = static_cast<uint32_t>(light_samples);
   const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
   if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
-    for (const ShadowParamInfo& info : shadow_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
+    std::fputs(shadow_param_table().help().c_str(), stdout);
     return ok_status();
   }
   DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
@@ -140,18 +138,16 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const int64_t warmup, flags.get_int("warmup", 128, 0, 100000));
   const std::vector<std::string> field_assignments = flags.get_all("field");
   if (!field_assignments.empty() && field_assignments.front() == "help") {
-    for (const FieldParamInfo& info : field_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
+    std::fputs(field_param_table().help().c_str(), stdout);
     return ok_status();
   }
 
   DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
   for (const std::string& warning : scene.warnings) LOG_WARNING << scene_path << ": " << warning;
   IrradianceFieldParams field_params = default_field_params(scene);
-  DDGI_TRY(apply_field_assignments(field_params, field_assignments));
+  DDGI_TRY(field_param_table().apply(field_params, field_assignments));
   ShadowFieldParams shadow_params = fit_shadow_grid(scene.world_bounds());
-  DDGI_TRY(apply_shadow_assignments(shadow_params, shadow_assignments));
+  DDGI_TRY(shadow_param_table().apply(shadow_params, shadow_assignments));
   settings.camera = default_camera(scene);
   if (!camera_values.empty()) {
     DDGI_ASSIGN_OR_RETURN(settings.camera, camera_from_values(camera_values, settings.camera));

@@ -15,7 +15,7 @@
 #include "encode/write_image.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_field.h"
-#include "gi/shadow_params_table.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "metrics/flip.h"
@@ -257,7 +257,7 @@ Status evaluate_scene(vk::Context& context, const SceneArg& arg, const Options& 
     ShadowFieldParams p =
         fit_shadow_grid(arg.region.value_or(scene.world_bounds()), resolution.cells);
     p.texels = resolution.texels;
-    DDGI_TRY(apply_shadow_assignments(p, o.shadow_assignments));
+    DDGI_TRY(shadow_param_table().apply(p, o.shadow_assignments));
     return p;
   };
   for (size_t r = 0; r < o.resolutions.size(); ++r) {
@@ -442,7 +442,7 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const auto forced_backend, vk::parse_backend(backend_text));
   // Fail on a bad assignment before any GPU work.
   ShadowFieldParams check;
-  DDGI_TRY(apply_shadow_assignments(check, o.shadow_assignments));
+  DDGI_TRY(shadow_param_table().apply(check, o.shadow_assignments));
 
   vk::ContextOptions options;
   options.backend = forced_backend;

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "encode/jpeg.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/irradiance_field.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
@@ -188,8 +188,9 @@ TEST_F(E2eTest, StreamedFrameMatchesRenderer) {
   auto scene = load_scene(std::string(DDGI_TEST_SCENE_ROOT) + "/cornell_box.gltf");
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   IrradianceFieldParams params = default_field_params(*scene);
-  ASSERT_TRUE(
-      apply_field_assignments(params, {"counts=2,2,2", "rays_per_probe=16", "fixed_rays=8"}).ok());
+  ASSERT_TRUE(field_param_table()
+                  .apply(params, {"counts=2,2,2", "rays_per_probe=16", "fixed_rays=8"})
+                  .ok());
   encode::ImageRgba8 reference;
   {
     auto gpu_scene = GpuScene::create(gpu, *scene);
