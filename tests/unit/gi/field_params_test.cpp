@@ -124,15 +124,82 @@ TEST(FieldParams, FlatAndEmptyBoundsGiveValidGrids) {
 }
 
 TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
+  // A distinct value for every member, none of them its default: a name wired to another member
+  // of its type (hysteresis and distance_hysteresis, say) shows as a mismatch.
+  const std::vector<std::pair<std::string, std::string>> values = {
+      {"origin", "1,2,3"},
+      {"spacing", "0.25,0.5,0.75"},
+      {"counts", "3,5,7"},
+      {"rays_per_probe", "64"},
+      {"fixed_rays", "16"},
+      {"max_ray_distance", "100"},
+      {"irradiance_texels", "6"},
+      {"distance_texels", "12"},
+      {"hysteresis", "0.9"},
+      {"distance_hysteresis", "0.8"},
+      {"change_threshold", "0.3"},
+      {"new_distribution_threshold", "0.7"},
+      {"irradiance_gamma", "4"},
+      {"distance_exponent", "40"},
+      {"backface_distance_scale", "0.15"},
+      {"self_shadow_bias", "0.35"},
+      {"energy_conservation", "0.95"},
+      {"weight_crush_threshold", "0.1"},
+      {"relocation_iterations", "3"},
+      {"classification", "false"},
+      {"probe_offset_limit", "0.4"},
+      {"min_frontface_distance", "0.2"},
+      {"backface_threshold", "0.45"},
+      {"max_rays_per_update", "1000"},
+      {"emitter_samples", "2"},
+      {"probe_direct", "ao"},
+      {"seed", "11"},
+  };
+  IrradianceFieldParams expected;
+  expected.origin = {1, 2, 3};
+  expected.spacing = {0.25f, 0.5f, 0.75f};
+  expected.counts = {3, 5, 7};
+  expected.rays_per_probe = 64;
+  expected.fixed_rays = 16;
+  expected.max_ray_distance = 100.0f;
+  expected.irradiance_texels = 6;
+  expected.distance_texels = 12;
+  expected.hysteresis = 0.9f;
+  expected.distance_hysteresis = 0.8f;
+  expected.change_threshold = 0.3f;
+  expected.new_distribution_threshold = 0.7f;
+  expected.irradiance_gamma = 4.0f;
+  expected.distance_exponent = 40.0f;
+  expected.backface_distance_scale = 0.15f;
+  expected.self_shadow_bias = 0.35f;
+  expected.energy_conservation = 0.95f;
+  expected.weight_crush_threshold = 0.1f;
+  expected.relocation_iterations = 3;
+  expected.classification = false;
+  expected.probe_offset_limit = 0.4f;
+  expected.min_frontface_distance = 0.2f;
+  expected.backface_threshold = 0.45f;
+  expected.max_rays_per_update = 1000;
+  expected.emitter_samples = 2;
+  expected.probe_direct = DirectMode::kAmbientOcclusion;
+  expected.seed = 11;
+
   const ParamTable<IrradianceFieldParams>& table = field_param_table();
-  for (const ParamSpec<IrradianceFieldParams>& spec : table.specs()) {
-    IrradianceFieldParams p;
-    auto value = table.get(p, spec.name);
-    ASSERT_TRUE(value.ok()) << spec.name;
-    // Writing back what was read changes nothing.
-    ASSERT_TRUE(table.set(p, spec.name, *value).ok()) << spec.name << "=" << *value;
-    EXPECT_EQ(*table.get(p, spec.name), *value) << spec.name;
+  IrradianceFieldParams p;
+  for (const auto& [name, value] : values) {
+    ASSERT_TRUE(table.set(p, name, value).ok()) << name << "=" << value;
   }
+  // Every member was set (a member missing from the table would keep its default) ...
+  EXPECT_TRUE(p == expected);
+  for (const ParamSpec<IrradianceFieldParams>& spec : table.specs()) {
+    // ... through the member its name stands for ...
+    EXPECT_EQ(*table.get(p, spec.name), *table.get(expected, spec.name)) << spec.name;
+    // ... and writing back what was read changes nothing.
+    IrradianceFieldParams copy;
+    ASSERT_TRUE(table.set(copy, spec.name, *table.get(p, spec.name)).ok()) << spec.name;
+    EXPECT_EQ(*table.get(copy, spec.name), *table.get(p, spec.name)) << spec.name;
+  }
+  EXPECT_EQ(values.size(), table.specs().size());
 }
 
 TEST(FieldParamTable, AssignmentsApplyThenValidate) {
