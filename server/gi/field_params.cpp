@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "gi/probe_grid.h"
 #include "shared/field_data.h"
 
 namespace ddgi {
@@ -12,21 +12,67 @@ namespace {
 constexpr int kMaxCountPerAxis = 512;
 constexpr uint64_t kMaxProbes = 4'194'304;
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-template <typename T>
-Status in_range(const char* name, T value, T min, T max) {
-  if (!(value >= min && value <= max)) {
-    std::ostringstream out;
-    out << name << " must be in [" << min << ", " << max << "] (got " << value << ")";
-    return invalid_argument(out.str());
-  }
-  return ok_status();
-}
-
 }  // namespace
+
+const ParamTable<IrradianceFieldParams>& field_param_table() {
+  using P = IrradianceFieldParams;
+  // The order is that of --field help and of the RPC's parameter list.
+  static const ParamTable<P> table(
+      "field parameter", "", grid_params<P>(kMaxCountPerAxis, kMaxProbes),
+      {
+          param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
+                        "blended rays per probe per update"),
+          param::number("fixed_rays", &P::fixed_rays, 0, 256,
+                        "unrotated rays for relocation/classification"),
+          param::number("max_ray_distance", &P::max_ray_distance, 1e-30f, 1e30f,
+                        "longer rays are misses"),
+          param::number("irradiance_texels", &P::irradiance_texels, 4, 32, "irradiance map side"),
+          param::number("distance_texels", &P::distance_texels, 4, 64, "distance map side"),
+          param::number("hysteresis", &P::hysteresis, 0.0f, 0.999f, "history weight per update"),
+          param::number("distance_hysteresis", &P::distance_hysteresis, 0.0f, 0.999f,
+                        "history weight of distances"),
+          param::number("change_threshold", &P::change_threshold, 0.0f, 1.0f,
+                        "relative change that lowers hysteresis"),
+          param::number("new_distribution_threshold", &P::new_distribution_threshold, 0.0f, 1.0f,
+                        "relative change that drops history"),
+          param::number("irradiance_gamma", &P::irradiance_gamma, 1.0f, 10.0f,
+                        "perceptual encoding exponent"),
+          param::number("distance_exponent", &P::distance_exponent, 1.0f, 100.0f,
+                        "power-cosine exponent of distances"),
+          param::number("backface_distance_scale", &P::backface_distance_scale, 0.0f, 1.0f,
+                        "back-face distance factor"),
+          param::number("self_shadow_bias", &P::self_shadow_bias, 0.0f, 2.0f, "2021 paper's B"),
+          param::number("energy_conservation", &P::energy_conservation, 0.0f, 1.0f,
+                        "irradiance feedback factor"),
+          param::number("weight_crush_threshold", &P::weight_crush_threshold, 0.0f, 1.0f,
+                        "weights below are crushed"),
+          param::number("relocation_iterations", &P::relocation_iterations, 0, 16,
+                        "relocation passes (0: no relocation)"),
+          param::flag("classification", &P::classification, param::BoolWords::kTrueFalse,
+                      "Off/Sleeping/Vigilant/Awake states, trace active probes only"),
+          param::number("probe_offset_limit", &P::probe_offset_limit, 0.0f, 0.49f,
+                        "relocation limit, fraction of spacing"),
+          param::number("min_frontface_distance", &P::min_frontface_distance, 0.0f, 0.5f,
+                        "relocation clearance, fraction of spacing"),
+          param::number("backface_threshold", &P::backface_threshold, 1e-6f, 1.0f,
+                        "back-face fraction meaning inside"),
+          // Its limit depends on rays_per_probe and fixed_rays: validate() states it.
+          param::number("max_rays_per_update", &P::max_rays_per_update,
+                        "probe rays per update, 0: no cap, else >= one probe's rays"),
+          param::number("emitter_samples", &P::emitter_samples, 0, 64,
+                        "emitter samples per pixel and probe-ray hit (0: emitters via the field)"),
+          param::choice("probe_direct", &P::probe_direct, "frame",
+                        {{"shadow-rays", DirectMode::kTracedShadows},
+                         {"unshadowed", DirectMode::kUnshadowed},
+                         {"shadow-field", DirectMode::kShadowField},
+                         {"ao", DirectMode::kAmbientOcclusion}},
+                        "direct light at probe-ray hits (frame: the frame's mode)"),
+          param::number("seed", &P::seed, "seed of the random ray rotations"),
+      });
+  return table;
+}
+
+template class ParamTable<IrradianceFieldParams>;
 
 float visibility_range(glm::vec3 spacing) {
   const double diagonal = std::sqrt(double(spacing.x) * spacing.x + double(spacing.y) * spacing.y +
@@ -40,45 +86,11 @@ DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams*
 }
 
 uint64_t probe_count(const IrradianceFieldParams& p) {
-  return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
-         uint64_t(std::max(p.counts.z, 0));
+  return grid_probe_count(p.counts);
 }
 
 Status validate(const IrradianceFieldParams& p) {
-  if (!finite(p.origin)) return invalid_argument("origin must be finite");
-  if (!finite(p.spacing) || !(p.spacing.x > 0.0f && p.spacing.y > 0.0f && p.spacing.z > 0.0f)) {
-    return invalid_argument("spacing must be finite and > 0 on every axis");
-  }
-  for (int axis = 0; axis < 3; ++axis) {
-    DDGI_TRY(in_range(axis == 0   ? "counts.x"
-                      : axis == 1 ? "counts.y"
-                                  : "counts.z",
-                      p.counts[axis], 1, kMaxCountPerAxis));
-  }
-  if (probe_count(p) > kMaxProbes) {
-    return invalid_argument("counts give " + std::to_string(probe_count(p)) + " probes; at most " +
-                            std::to_string(kMaxProbes) + " are allowed");
-  }
-  DDGI_TRY(in_range("rays_per_probe", p.rays_per_probe, 1u, 1024u));
-  DDGI_TRY(in_range("fixed_rays", p.fixed_rays, 0u, 256u));
-  DDGI_TRY(in_range("max_ray_distance", p.max_ray_distance, 1e-30f, 1e30f));
-  DDGI_TRY(in_range("irradiance_texels", p.irradiance_texels, 4u, 32u));
-  DDGI_TRY(in_range("distance_texels", p.distance_texels, 4u, 64u));
-  DDGI_TRY(in_range("hysteresis", p.hysteresis, 0.0f, 0.999f));
-  DDGI_TRY(in_range("distance_hysteresis", p.distance_hysteresis, 0.0f, 0.999f));
-  DDGI_TRY(in_range("change_threshold", p.change_threshold, 0.0f, 1.0f));
-  DDGI_TRY(in_range("new_distribution_threshold", p.new_distribution_threshold, 0.0f, 1.0f));
-  DDGI_TRY(in_range("irradiance_gamma", p.irradiance_gamma, 1.0f, 10.0f));
-  DDGI_TRY(in_range("distance_exponent", p.distance_exponent, 1.0f, 100.0f));
-  DDGI_TRY(in_range("backface_distance_scale", p.backface_distance_scale, 0.0f, 1.0f));
-  DDGI_TRY(in_range("self_shadow_bias", p.self_shadow_bias, 0.0f, 2.0f));
-  DDGI_TRY(in_range("energy_conservation", p.energy_conservation, 0.0f, 1.0f));
-  DDGI_TRY(in_range("weight_crush_threshold", p.weight_crush_threshold, 0.0f, 1.0f));
-  DDGI_TRY(in_range("relocation_iterations", p.relocation_iterations, 0u, 16u));
-  DDGI_TRY(in_range("emitter_samples", p.emitter_samples, 0u, 64u));
-  DDGI_TRY(in_range("probe_offset_limit", p.probe_offset_limit, 0.0f, 0.49f));
-  DDGI_TRY(in_range("min_frontface_distance", p.min_frontface_distance, 0.0f, 0.5f));
-  DDGI_TRY(in_range("backface_threshold", p.backface_threshold, 1e-6f, 1.0f));
+  DDGI_TRY(field_param_table().check(p));
   if ((p.relocation_iterations > 0 || p.classification) && p.fixed_rays < 8) {
     return invalid_argument("relocation and classification need fixed_rays >= 8 (got " +
                             std::to_string(p.fixed_rays) +
@@ -105,9 +117,9 @@ Status validate(const IrradianceFieldParams& p) {
 
 AtlasLayout atlas_layout(const IrradianceFieldParams& p) {
   AtlasLayout layout;
-  const uint64_t probes = std::max<uint64_t>(probe_count(p), 1);
-  layout.tiles_per_row = static_cast<uint32_t>(std::ceil(std::sqrt(double(probes))));
-  layout.rows = static_cast<uint32_t>((probes + layout.tiles_per_row - 1) / layout.tiles_per_row);
+  const SquareTiling tiling = square_tiling(probe_count(p));
+  layout.tiles_per_row = tiling.tiles_per_row;
+  layout.rows = tiling.rows;
   const uint32_t irradiance_tile = p.irradiance_texels + 2 * gpu::kAtlasBorder;
   const uint32_t distance_tile = p.distance_texels + 2 * gpu::kAtlasBorder;
   layout.irradiance_size = {layout.tiles_per_row * irradiance_tile, layout.rows * irradiance_tile};
@@ -117,23 +129,11 @@ AtlasLayout atlas_layout(const IrradianceFieldParams& p) {
 
 IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes,
                                          IrradianceFieldParams base) {
-  if (bounds.empty()) {
-    base.origin = glm::vec3(0.0f);
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  const glm::vec3 extent = glm::max(bounds.extent(), glm::vec3(0.0f));
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  if (!(largest > 0.0f)) {
-    base.origin = bounds.center();
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  // Axes thinner than 1% of the largest count as flat: one probe layer.
-  const glm::vec3 used = glm::max(extent, glm::vec3(largest * 0.01f));
-  const float volume = used.x * used.y * used.z;
+  const GridFitStart fit = start_grid_fit(bounds);
+  if (fit.single) return placed(base, *fit.single);
+  const glm::vec3 extent = fit.extent;
+  // Flat axes (thinner than 1% of the largest) get one probe layer.
+  const float volume = fit.used.x * fit.used.y * fit.used.z;
   const float spacing = std::cbrt(volume / float(std::max(target_probes, 1u)));
   for (int axis = 0; axis < 3; ++axis) {
     const int count = static_cast<int>(std::lround(extent[axis] / spacing));

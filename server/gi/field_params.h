@@ -1,6 +1,8 @@
 // Parameters of one DDGI irradiance field: the probe grid and how it is traced, blended and
-// sampled. One struct, one validation function; the CLI, config files and the RPC API all go
-// through validate(). References: Majercik et al. 2019/2021 ("the 2021 paper") and Hvezda 2022
+// sampled. One struct; one table declaring each parameter's name, range and short doc once
+// (field_param_table(), in field_params.cpp; see gi/param_table.h), from which validate(), the
+// by-name text form (CLI --field, config files, the RPC API), the help text and the range tests
+// are derived. References: Majercik et al. 2019/2021 ("the 2021 paper") and Hvezda 2022
 // ("the thesis"), in ../shared/papers/.
 #pragma once
 
@@ -11,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/result.h"
+#include "gi/param_table.h"
 #include "gpu_scene/frame_types.h"
 #include "scene/scene.h"
 
@@ -122,9 +125,16 @@ struct IrradianceFieldParams {
   // --- Determinism ----------------------------------------------------------------------------
   // Seed of the per-update random ray rotation: the same seed gives the same field.
   uint32_t seed = 1;
+
+  bool operator==(const IrradianceFieldParams&) const = default;
 };
 
-// Errors name the field and its allowed range.
+// Every parameter by name: its range, its text form and its help (field_params.cpp).
+const ParamTable<IrradianceFieldParams>& field_param_table();
+extern template class ParamTable<IrradianceFieldParams>;
+
+// The table's ranges (errors name the field and its allowed range), then the rules across
+// parameters.
 Status validate(const IrradianceFieldParams& params);
 
 // A grid fitted to `bounds`: about `target_probes` probes (512: 8x8x8 for a cube, enough for a

@@ -1,8 +1,8 @@
 // The GI stack (gi/gi_stack.h).
 #include "gi/gi_stack.h"
 
-#include "gi/field_param_table.h"
-#include "gi/shadow_params_table.h"
+#include "gi/field_params.h"
+#include "gi/shadow_params.h"
 
 namespace ddgi {
 
@@ -15,9 +15,9 @@ Result<GiStackOptions> fitted_gi_options(const Scene& scene, bool gi, DirectMode
   options.direct_mode = direct_mode;
   options.backend = backend;
   options.field = default_field_params(scene);
-  DDGI_TRY(apply_field_assignments(options.field, field_assignments));
+  DDGI_TRY(field_param_table().apply(options.field, field_assignments));
   options.shadow = fit_shadow_grid(scene.world_bounds());
-  DDGI_TRY(apply_shadow_assignments(options.shadow, shadow_assignments));
+  DDGI_TRY(shadow_param_table().apply(options.shadow, shadow_assignments));
   return options;
 }
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "gi/probe_grid.h"
 #include "shared/shadow_field_data.h"
 
 namespace ddgi {
@@ -12,60 +12,60 @@ namespace {
 constexpr int kMaxCountPerAxis = 256;
 constexpr uint64_t kMaxProbes = 1'048'576;
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-template <typename T>
-Status in_range(const char* name, T value, T min, T max) {
-  if (!(value >= min && value <= max)) {
-    std::ostringstream out;
-    out << "shadow field " << name << " must be in [" << min << ", " << max << "] (got " << value
-        << ")";
-    return invalid_argument(out.str());
-  }
-  return ok_status();
-}
-
 }  // namespace
 
+const ParamTable<ShadowFieldParams>& shadow_param_table() {
+  using P = ShadowFieldParams;
+  // The order is that of --shadow-field help and of the RPC's parameter list.
+  static const ParamTable<P> table(
+      "shadow field parameter", "shadow field ", grid_params<P>(kMaxCountPerAxis, kMaxProbes),
+      {
+          param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
+                        "probe rays per probe per update"),
+          param::number("max_lights", &P::max_lights, 1, gpu::kShadowMaxLights,
+                        "lights kept in the atlas (first in scene order)"),
+          param::choice("overflow", &P::overflow,
+                        {{"shadow-rays", ShadowOverflow::kTracedShadows},
+                         {"unshadowed", ShadowOverflow::kUnshadowed}},
+                        "lights past max_lights"),
+          param::flag("split_update", &P::split_update, param::BoolWords::kOnOff,
+                      "shadow rays one update after their probe rays (thesis)"),
+          param::number("max_ray_distance", &P::max_ray_distance, 1e-30f, 1e30f,
+                        "longer probe rays see nothing"),
+          param::number("ao_distance", &P::ao_distance, 1e-30f, 1e30f,
+                        "longer AO rays count as open sky"),
+          param::number("texels", &P::texels, 4, 64, "octahedral map side"),
+          param::number("hysteresis", &P::hysteresis, 0.0f, 0.999f, "history weight per update"),
+          param::number("visibility_exponent", &P::visibility_exponent, 1.0f, 1000.0f,
+                        "power-cosine exponent of the visibility blend"),
+          param::number("distance_exponent", &P::distance_exponent, 1.0f, 1000.0f,
+                        "power-cosine exponent of the distance blend"),
+          param::number("backface_distance_scale", &P::backface_distance_scale, 0.0f, 1.0f,
+                        "back-face distance factor"),
+          param::choice("weighting", &P::weighting,
+                        {{"cosine", ShadowWeighting::kCosine}, {"wrap", ShadowWeighting::kWrap}},
+                        "probe weights when sampling"),
+          param::number("normal_bias", &P::normal_bias, 0.0f, 1.0f,
+                        "shading-point offset along the normal (x spacing)"),
+          param::number("view_bias", &P::view_bias, 0.0f, 1.0f,
+                        "shading-point offset towards the viewer (x spacing)"),
+          param::number("sharpening", &P::sharpening, 1.0f, 16.0f,
+                        "power applied to sampled visibility"),
+          param::number("weight_crush_threshold", &P::weight_crush_threshold, 0.0f, 1.0f,
+                        "probe weights below are crushed"),
+          param::number("seed", &P::seed, "seed of the ray rotations and jitter"),
+      });
+  return table;
+}
+
+template class ParamTable<ShadowFieldParams>;
+
 uint64_t probe_count(const ShadowFieldParams& p) {
-  return uint64_t(std::max(p.counts.x, 0)) * uint64_t(std::max(p.counts.y, 0)) *
-         uint64_t(std::max(p.counts.z, 0));
+  return grid_probe_count(p.counts);
 }
 
 Status validate(const ShadowFieldParams& p) {
-  if (!finite(p.origin)) return invalid_argument("shadow field origin must be finite");
-  if (!finite(p.spacing) || !(p.spacing.x > 0.0f && p.spacing.y > 0.0f && p.spacing.z > 0.0f)) {
-    return invalid_argument("shadow field spacing must be finite and > 0 on every axis");
-  }
-  const char* axes[] = {"counts.x", "counts.y", "counts.z"};
-  for (int axis = 0; axis < 3; ++axis) {
-    DDGI_TRY(in_range(axes[axis], p.counts[axis], 1, kMaxCountPerAxis));
-  }
-  if (probe_count(p) > kMaxProbes) {
-    return invalid_argument("shadow field counts give " + std::to_string(probe_count(p)) +
-                            " probes; at most " + std::to_string(kMaxProbes) + " are allowed");
-  }
-  DDGI_TRY(in_range("rays_per_probe", p.rays_per_probe, 1u, 1024u));
-  DDGI_TRY(in_range("max_lights", p.max_lights, 1u, gpu::kShadowMaxLights));
-  if (p.overflow != ShadowOverflow::kTracedShadows && p.overflow != ShadowOverflow::kUnshadowed) {
-    return invalid_argument("shadow field overflow must be shadow-rays or unshadowed");
-  }
-  DDGI_TRY(in_range("max_ray_distance", p.max_ray_distance, 1e-30f, 1e30f));
-  DDGI_TRY(in_range("ao_distance", p.ao_distance, 1e-30f, 1e30f));
-  DDGI_TRY(in_range("texels", p.texels, 4u, 64u));
-  DDGI_TRY(in_range("hysteresis", p.hysteresis, 0.0f, 0.999f));
-  DDGI_TRY(in_range("visibility_exponent", p.visibility_exponent, 1.0f, 1000.0f));
-  DDGI_TRY(in_range("distance_exponent", p.distance_exponent, 1.0f, 1000.0f));
-  DDGI_TRY(in_range("backface_distance_scale", p.backface_distance_scale, 0.0f, 1.0f));
-  if (p.weighting != ShadowWeighting::kCosine && p.weighting != ShadowWeighting::kWrap) {
-    return invalid_argument("shadow field weighting must be cosine or wrap");
-  }
-  DDGI_TRY(in_range("normal_bias", p.normal_bias, 0.0f, 1.0f));
-  DDGI_TRY(in_range("view_bias", p.view_bias, 0.0f, 1.0f));
-  DDGI_TRY(in_range("sharpening", p.sharpening, 1.0f, 16.0f));
-  DDGI_TRY(in_range("weight_crush_threshold", p.weight_crush_threshold, 0.0f, 1.0f));
+  DDGI_TRY(shadow_param_table().check(p));
   const ShadowAtlasLayout layout = shadow_atlas_layout(p);
   const glm::uvec2 largest = glm::max(layout.visibility_size, layout.moments_size);
   if (largest.x > gpu::kShadowMaxAtlasDimension || largest.y > gpu::kShadowMaxAtlasDimension) {
@@ -80,10 +80,9 @@ Status validate(const ShadowFieldParams& p) {
 
 ShadowAtlasLayout shadow_atlas_layout(const ShadowFieldParams& p) {
   ShadowAtlasLayout layout;
-  const uint64_t probes = std::max<uint64_t>(probe_count(p), 1);
-  layout.tiles_per_row = static_cast<uint32_t>(std::ceil(std::sqrt(double(probes))));
-  layout.tile_rows =
-      static_cast<uint32_t>((probes + layout.tiles_per_row - 1) / layout.tiles_per_row);
+  const SquareTiling tiling = square_tiling(probe_count(p));
+  layout.tiles_per_row = tiling.tiles_per_row;
+  layout.tile_rows = tiling.rows;
   layout.light_groups =
       (std::max(p.max_lights, 1u) + gpu::kShadowLightsPerGroup - 1) / gpu::kShadowLightsPerGroup;
   const uint32_t tile = p.texels + 2 * gpu::kShadowAtlasBorder;
@@ -94,28 +93,15 @@ ShadowAtlasLayout shadow_atlas_layout(const ShadowFieldParams& p) {
 
 ShadowFieldParams fit_shadow_grid(const Bounds& bounds, uint32_t target_cells,
                                   ShadowFieldParams base) {
-  if (bounds.empty()) {
-    base.origin = glm::vec3(0.0f);
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  const glm::vec3 extent = glm::max(bounds.extent(), glm::vec3(0.0f));
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  if (!(largest > 0.0f)) {
-    base.origin = bounds.center();
-    base.spacing = glm::vec3(1.0f);
-    base.counts = glm::ivec3(1);
-    return base;
-  }
-  // Axes thinner than 1% of the largest count as flat.
-  const glm::vec3 used = glm::max(extent, glm::vec3(largest * 0.01f));
+  const GridFitStart fit = start_grid_fit(bounds);
+  if (fit.single) return placed(base, *fit.single);
+  const glm::vec3 used = fit.used;
   const float target = std::cbrt(used.x * used.y * used.z / float(std::max(target_cells, 1u)));
   for (int axis = 0; axis < 3; ++axis) {
     // Cell-centred over the bounds plus one layer half a cell outside each face: a surface on
     // the bounds (a floor, the top of the tallest object) has probes in front of it, which
     // cosine weighting needs. A flat axis gets one layer on each side of its plane.
-    const bool flat = extent[axis] <= largest * 0.01f;
+    const bool flat = fit.extent[axis] <= fit.largest * 0.01f;
     const int cells = flat ? 1 : std::max(1, static_cast<int>(std::lround(used[axis] / target)));
     base.spacing[axis] = flat ? target : used[axis] / float(cells);
     base.counts[axis] = std::min(flat ? 2 : cells + 2, kMaxCountPerAxis);

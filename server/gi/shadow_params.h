@@ -1,7 +1,9 @@
 // Parameters of one shadow field (docs/shadow-field.md): its own probe grid, how it traces and
-// blends light visibility, and how a shading point samples it. One struct, one validation
-// function; the CLI (--shadow-field name=value) goes through validate(). References: Hvezda 2022
-// ("the thesis", ch. 5) and Majercik et al. 2019/2021 for what the shadow field shares with the
+// blends light visibility, and how a shading point samples it. One struct; one table declaring
+// each parameter's name, range and short doc once (shadow_param_table(), in shadow_params.cpp;
+// see gi/param_table.h), from which validate(), the by-name text form (CLI --shadow-field, the
+// RPC API), the help text and the range tests are derived. References: Hvezda 2022 ("the
+// thesis", ch. 5) and Majercik et al. 2019/2021 for what the shadow field shares with the
 // irradiance field (octahedral maps, distance moments, Chebyshev visibility).
 #pragma once
 
@@ -10,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "core/result.h"
+#include "gi/param_table.h"
 #include "scene/scene.h"
 
 namespace ddgi {
@@ -95,9 +98,15 @@ struct ShadowFieldParams {
   // --- Determinism ---------------------------------------------------------------------------
   // Seed of the per-update ray rotation and of the light and AO jitter.
   uint32_t seed = 7;
+
+  bool operator==(const ShadowFieldParams&) const = default;
 };
 
-// Errors name the parameter and its allowed range.
+// Every parameter by name: its range, its text form and its help (shadow_params.cpp).
+const ParamTable<ShadowFieldParams>& shadow_param_table();
+extern template class ParamTable<ShadowFieldParams>;
+
+// The table's ranges (errors name the parameter and its allowed range), then the atlas size.
 Status validate(const ShadowFieldParams& params);
 
 // A grid fitted to `bounds` with about `target_cells` cells (512: 8x8x8 for a cube, cheap

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/log.h"
-#include "gi/field_param_table.h"
-#include "gi/shadow_params_table.h"
+#include "gi/field_params.h"
+#include "gi/shadow_params.h"
 #include "rpc/status_code_name.h"
 #include "service/atlas_stream.h"
 #include "service/frame_stream.h"
@@ -31,6 +31,17 @@ std::vector<std::string> assignments_of(
   return out;
 }
 
+// Every parameter of `table` with its help (the range and the reason).
+template <typename P>
+void describe_params(const ParamTable<P>& table,
+                     google::protobuf::RepeatedPtrField<v1::FieldParamInfo>* out) {
+  for (const ParamSpec<P>& spec : table.specs()) {
+    auto* p = out->Add();
+    p->set_name(spec.name);
+    p->set_description(spec.help);
+  }
+}
+
 // Field-parameter requests carry text: bound it before the parser sees it.
 Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldParam>& params,
                           v1::FieldKind kind) {
@@ -51,10 +62,10 @@ Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldPara
   // ranges that depend on the scene's grid are checked again when applied.
   if (kind == v1::FIELD_KIND_SHADOW) {
     ShadowFieldParams scratch;
-    return apply_shadow_assignments(scratch, assignments_of(params));
+    return shadow_param_table().apply(scratch, assignments_of(params));
   }
   IrradianceFieldParams scratch;
-  return apply_field_assignments(scratch, assignments_of(params));
+  return field_param_table().apply(scratch, assignments_of(params));
 }
 
 }  // namespace
@@ -137,16 +148,8 @@ grpc::ServerUnaryReactor* RenderServiceImpl::GetServerInfo(grpc::CallbackServerC
     reply->set_sessions(static_cast<uint32_t>(sessions_.size()));
     reply->set_gpu_memory_used_bytes(context_.allocated_bytes());
     reply->set_auth_required(auth_.enabled());
-    for (const FieldParamInfo& info : field_param_infos()) {
-      auto* p = reply->add_field_params();
-      p->set_name(info.name);
-      p->set_description(info.description);
-    }
-    for (const ShadowParamInfo& info : shadow_param_infos()) {
-      auto* p = reply->add_shadow_field_params();
-      p->set_name(info.name);
-      p->set_description(info.description);
-    }
+    describe_params(field_param_table(), reply->mutable_field_params());
+    describe_params(shadow_param_table(), reply->mutable_shadow_field_params());
     done(ok_status());
     return ok_status();
   });

@@ -4,8 +4,8 @@
 #include <thread>
 
 #include "core/log.h"
-#include "gi/field_param_table.h"
-#include "gi/shadow_params_table.h"
+#include "gi/field_params.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "scene/gltf_loader.h"
 #include "service/atlas_export.h"
@@ -603,15 +603,24 @@ void Session::set_instance_transform(uint32_t index, glm::mat4 transform, v1::In
 // ---- Field
 // ----------------------------------------------------------------------------------------
 
+namespace {
+
+// Every parameter of `table` with its value in `values`.
+template <typename P>
+void add_param_values(const ParamTable<P>& table, const P& values, v1::FieldParams* params) {
+  for (const ParamSpec<P>& spec : table.specs()) {
+    auto* p = params->add_params();
+    p->set_name(spec.name);
+    p->set_value(spec.format(values));
+  }
+}
+
+}  // namespace
+
 void Session::fill_field(v1::FieldParams* params) const {
   params->Clear();
   params->set_field(v1::FIELD_KIND_IRRADIANCE);
-  for (const FieldParamInfo& info : field_param_infos()) {
-    auto value = get_field_param(field()->params(), info.name);
-    auto* p = params->add_params();
-    p->set_name(info.name);
-    p->set_value(value.ok() ? value.value() : "");
-  }
+  add_param_values(field_param_table(), field()->params(), params);
   params->set_probes(probe_count(field()->params()));
   params->set_gpu_bytes(field()->gpu_bytes());
   params->set_updates(field()->updates());
@@ -627,12 +636,7 @@ void Session::fill_field(v1::FieldParams* params) const {
 void Session::fill_shadow_field(v1::FieldParams* params) const {
   params->Clear();
   params->set_field(v1::FIELD_KIND_SHADOW);
-  for (const ShadowParamInfo& info : shadow_param_infos()) {
-    auto value = get_shadow_param(shadow_field()->params(), info.name);
-    auto* p = params->add_params();
-    p->set_name(info.name);
-    p->set_value(value.ok() ? value.value() : "");
-  }
+  add_param_values(shadow_param_table(), shadow_field()->params(), params);
   params->set_probes(probe_count(shadow_field()->params()));
   params->set_gpu_bytes(shadow_field()->gpu_bytes());
   params->set_updates(shadow_field()->updates());
@@ -675,12 +679,12 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
         DDGI_TRY(require_field(kind));
         if (kind == v1::FIELD_KIND_SHADOW) {
           ShadowFieldParams params = shadow_field()->params();
-          DDGI_TRY(apply_shadow_assignments(params, assignments));
+          DDGI_TRY(shadow_param_table().apply(params, assignments));
           DDGI_TRY(shadow_field()->set_params(params));
           fill_shadow_field(reply);
         } else {
           IrradianceFieldParams params = field()->params();
-          DDGI_TRY(apply_field_assignments(params, assignments));
+          DDGI_TRY(field_param_table().apply(params, assignments));
           DDGI_TRY(field()->set_params(params));
           fill_field(reply);
         }

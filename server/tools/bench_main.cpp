@@ -10,7 +10,7 @@
 
 #include "core/flags.h"
 #include "core/log.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
@@ -108,7 +108,7 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
       fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
   DDGI_ASSIGN_OR_RETURN(options.field, grid_for(scene, grid, job.probes));
   options.field.rays_per_probe = rays;
-  DDGI_TRY(apply_field_assignments(options.field, job.field_assignments));
+  DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
   DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));

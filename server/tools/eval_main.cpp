@@ -12,7 +12,7 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"

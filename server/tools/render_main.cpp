@@ -7,9 +7,9 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "encode/write_image.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/gi_stack.h"
-#include "gi/shadow_params_table.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
@@ -98,16 +98,12 @@ bool printed_help(const Flags& flags) {
   }
   const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
   if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
-    for (const ShadowParamInfo& info : shadow_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
+    std::fputs(shadow_param_table().help().c_str(), stdout);
     return true;
   }
   const std::vector<std::string> field_assignments = flags.get_all("field");
   if (!field_assignments.empty() && field_assignments.front() == "help") {
-    for (const FieldParamInfo& info : field_param_infos()) {
-      std::printf("  %-28s %s\n", info.name.c_str(), info.description.c_str());
-    }
+    std::fputs(field_param_table().help().c_str(), stdout);
     return true;
   }
   return false;

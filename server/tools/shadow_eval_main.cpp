@@ -15,7 +15,7 @@
 #include "encode/write_image.h"
 #include "gi/gi_stack.h"
 #include "gi/shadow_field.h"
-#include "gi/shadow_params_table.h"
+#include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "metrics/flip.h"
@@ -230,7 +230,7 @@ Result<std::vector<ModeRun>> mode_runs(const Scene& scene, const SceneArg& arg, 
     ShadowFieldParams p =
         fit_shadow_grid(arg.region.value_or(scene.world_bounds()), resolution.cells);
     p.texels = resolution.texels;
-    DDGI_TRY(apply_shadow_assignments(p, o.shadow_assignments));
+    DDGI_TRY(shadow_param_table().apply(p, o.shadow_assignments));
     return p;
   };
   for (size_t r = 0; r < o.resolutions.size(); ++r) {
@@ -432,7 +432,7 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(const std::string svg_path, flags.get_string("svg", ""));
   // Fail on a bad assignment before any GPU work.
   ShadowFieldParams check;
-  DDGI_TRY(apply_shadow_assignments(check, o.shadow_assignments));
+  DDGI_TRY(shadow_param_table().apply(check, o.shadow_assignments));
   DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
   std::printf(
       "device: %s (%s), backend %s, %ux%u, references %u spp (direct) and %u spp (full), %u "

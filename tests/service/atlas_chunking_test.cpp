@@ -12,7 +12,6 @@
 #include <fstream>
 
 #include "encode/exr.h"
-#include "gi/field_param_table.h"
 #include "gi/field_params.h"
 #include "tests/service/atlas_download.h"
 #include "tests/service/service_fixture.h"
@@ -69,7 +68,7 @@ TEST_F(AtlasChunkingTest, ChunksReassembleToTheSingleChunkDump) {
   IrradianceFieldParams params;
   std::vector<std::string> assignments;
   for (const auto& p : reply.params()) assignments.push_back(p.name() + "=" + p.value());
-  ASSERT_TRUE(apply_field_assignments(params, assignments).ok());
+  ASSERT_TRUE(field_param_table().apply(params, assignments).ok());
   ASSERT_EQ(params.counts, glm::ivec3(6));
 
   const AtlasDownload raw =

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "encode/jpeg.h"
-#include "gi/field_param_table.h"
+#include "gi/field_params.h"
 #include "gi/gi_stack.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_params.h"

@@ -4,10 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "gi/field_param_table.h"
 #include "gi/field_params.h"
 #include "gi/shadow_params.h"
-#include "gi/shadow_params_table.h"
 #include "tests/service/atlas_download.h"
 #include "tests/service/service_fixture.h"
 
@@ -102,8 +100,8 @@ TEST_F(FieldRefusalTest, IrradianceFieldKeptByteForByte) {
 
   // The need the server must name: the parameters in effect with a 64^3 grid.
   IrradianceFieldParams huge;
-  ASSERT_TRUE(apply_field_assignments(huge, assignments(before)).ok());
-  ASSERT_TRUE(apply_field_assignments(huge, {"counts=64,64,64"}).ok());
+  ASSERT_TRUE(field_param_table().apply(huge, assignments(before)).ok());
+  ASSERT_TRUE(field_param_table().apply(huge, {"counts=64,64,64"}).ok());
   ASSERT_TRUE(validate(huge).ok()) << "the request must be refused by the budget, not a range";
   const uint64_t needed = field_gpu_bytes(huge);
   ASSERT_GT(needed, kTestGpuBudget);
@@ -156,8 +154,8 @@ TEST_F(FieldRefusalTest, ShadowFieldKeptByteForByte) {
   ASSERT_FALSE(visibility_before.bytes.empty());
 
   ShadowFieldParams huge;
-  ASSERT_TRUE(apply_shadow_assignments(huge, assignments(before)).ok());
-  ASSERT_TRUE(apply_shadow_assignments(huge, {"counts=32,32,32", "rays_per_probe=1024"}).ok());
+  ASSERT_TRUE(shadow_param_table().apply(huge, assignments(before)).ok());
+  ASSERT_TRUE(shadow_param_table().apply(huge, {"counts=32,32,32", "rays_per_probe=1024"}).ok());
   ASSERT_TRUE(validate(huge).ok()) << "the request must be refused by the budget, not a range";
   const uint64_t needed = shadow_field_gpu_bytes(huge);
   ASSERT_GT(needed, kTestGpuBudget);
