@@ -1,5 +1,6 @@
 // Bearer-token auth: missing or wrong tokens are UNAUTHENTICATED on every RenderService call
-// (unary and streaming); the health service answers without one; tokens never reach the log.
+// (unary and streaming), the scheme in any case; the health service answers without one;
+// tokens never reach the log.
 #include <unistd.h>
 
 #include <cstdlib>
@@ -71,6 +72,22 @@ TEST_F(AuthTest, RightTokenWorks) {
   request.mutable_settings()->set_height(12);
   StreamWatcher stream(*stub_, request, kToken);
   EXPECT_TRUE(stream.wait_for(2, 30.0));
+}
+
+// HTTP authentication schemes are case-insensitive (RFC 9110 section 11.1), and one or more
+// spaces may follow the scheme; the token itself is compared exactly.
+TEST_F(AuthTest, SchemeIsCaseInsensitive) {
+  for (const char* scheme : {"Bearer ", "bearer ", "BEARER ", "bEaReR ", "Bearer   "}) {
+    const grpc::Status status = info_with(scheme + std::string(kToken));
+    EXPECT_TRUE(status.ok()) << "'" << scheme << "': " << status.error_message();
+  }
+  for (const std::string& refused :
+       {std::string("Bearer") + kToken, std::string("Basic ") + kToken,
+        std::string("bearer S3CRET-T0KEN-FOR-TESTS"), std::string("bearer x") + kToken,
+        std::string("bearer "), std::string("bearer")}) {
+    const grpc::Status status = info_with(refused);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << "'" << refused << "'";
+  }
 }
 
 TEST_F(AuthTest, HealthAnswersWithoutToken) {
