@@ -24,6 +24,7 @@ $SUDO apt-get install -y -q --no-install-recommends \
   libtinygltf-dev nlohmann-json3-dev libstb-dev \
   libturbojpeg0-dev libjpeg62-turbo-dev \
   libopenexr-dev \
+  libcivetweb-dev \
   libopenimageio-dev \
   libgtest-dev \
   libsdl2-dev \

@@ -8,6 +8,7 @@
 
 #include "scene/accessor_reader.h"
 #include "scene/glb_container.h"
+#include "scene/gltf_json_check.h"
 #include "scene/image_decode.h"
 #include "scene/json_precheck.h"
 
@@ -143,15 +144,12 @@ bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* er
 
 // tinygltf copies the whole BIN chunk into every GLB buffer that has no uri, before any check
 // of ours could run: a few bytes of JSON listing many such buffers would exhaust memory.
-Status check_glb_buffers(std::span<const uint8_t> json_text) {
-  const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr,
-                                                   /*allow_exceptions=*/false);
-  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) {
-    return ok_status();  // tinygltf reports what is wrong with it
-  }
-  const nlohmann::json& buffers = doc["buffers"];
-  for (size_t i = 1; i < buffers.size(); ++i) {
-    if (!buffers[i].is_object() || !buffers[i].contains("uri")) {
+// (check_gltf_json has made sure `buffers` is an array of objects.)
+Status check_glb_buffers(const nlohmann::json& doc) {
+  const auto buffers = doc.find("buffers");
+  if (buffers == doc.end()) return ok_status();
+  for (size_t i = 1; i < buffers->size(); ++i) {
+    if (!(*buffers)[i].contains("uri")) {
       return invalid_argument("buffers[" + std::to_string(i) +
                               "] has no uri; only buffers[0] may refer to the GLB BIN chunk");
     }
@@ -194,7 +192,15 @@ Result<tinygltf::Model> parse_gltf(std::span<const uint8_t> bytes, const SceneFo
   }
   if (json_text.size() < 2) return invalid_argument("the file is too short to be glTF");
   DDGI_TRY(precheck_json(json_text, limits.max_json_depth));
-  if (binary) DDGI_TRY(check_glb_buffers(json_text));
+  {
+    // The pre-check bounded the nesting, so the document can be built; it is dropped before
+    // tinygltf builds its own.
+    const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr,
+                                                     /*allow_exceptions=*/false);
+    if (doc.is_discarded()) return invalid_argument("invalid JSON");
+    DDGI_TRY(check_gltf_json(doc));
+    if (binary) DDGI_TRY(check_glb_buffers(doc));
+  }
 
   ParseContext ctx;
   ctx.folder = &folder;

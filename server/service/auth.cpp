@@ -1,12 +1,35 @@
 #include "service/auth.h"
 
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 namespace ddgi::service {
 namespace {
 
-constexpr std::string_view kPrefix = "Bearer ";
+constexpr std::string_view kScheme = "bearer";
+
+bool equals_ignoring_case(std::string_view a, std::string_view lower) {
+  if (a.size() != lower.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const char c = a[i] >= 'A' && a[i] <= 'Z' ? static_cast<char>(a[i] - 'A' + 'a') : a[i];
+    if (c != lower[i]) return false;
+  }
+  return true;
+}
+
+// The credentials of "authorization: <scheme> 1*SP <token>" when the scheme is Bearer in any
+// case (RFC 9110 section 11.1: schemes are case-insensitive); nullopt otherwise.
+std::optional<std::string_view> bearer_credentials(std::string_view value) {
+  const size_t space = value.find(' ');
+  if (space == std::string_view::npos || !equals_ignoring_case(value.substr(0, space), kScheme)) {
+    return std::nullopt;
+  }
+  const size_t token = value.find_first_not_of(' ', space);
+  if (token == std::string_view::npos) return std::nullopt;
+  return value.substr(token);
+}
 
 bool constant_time_equal(std::string_view a, std::string_view b) {
   // Length is not secret enough to hide; the bytes are.
@@ -30,8 +53,8 @@ grpc::Status BearerAuth::check(const grpc::ServerContextBase& context) const {
                         "requires a bearer token");
   }
   const std::string_view value(it->second.data(), it->second.size());
-  if (value.size() < kPrefix.size() || value.substr(0, kPrefix.size()) != kPrefix ||
-      !constant_time_equal(value.substr(kPrefix.size()), token_)) {
+  const std::optional<std::string_view> presented = bearer_credentials(value);
+  if (!presented || !constant_time_equal(*presented, token_)) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "invalid bearer token");
   }
   return grpc::Status::OK;

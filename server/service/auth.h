@@ -1,6 +1,7 @@
 // Optional bearer-token auth: every RenderService call must carry the metadata
-// "authorization: Bearer <token>". The health service is not ours and stays open, so probes need
-// no secret. Tokens are compared in constant time and never logged or echoed.
+// "authorization: Bearer <token>" (the scheme in any case, one or more spaces before the token).
+// The health service is not ours and stays open, so probes need no secret. Tokens are compared in
+// constant time and never logged or echoed.
 #pragma once
 
 #include <grpcpp/grpcpp.h>

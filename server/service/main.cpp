@@ -11,6 +11,7 @@
 #include "core/flags.h"
 #include "core/log.h"
 #include "service/auth.h"
+#include "service/process_memory.h"
 #include "service/server.h"
 #include "vk/context.h"
 
@@ -246,6 +247,9 @@ Status run(int argc, char** argv) {
 }  // namespace ddgi::service
 
 int main(int argc, char** argv) {
+  // Before any thread starts (docs/service.md, "Memory"): sessions come and go on threads of
+  // their own, and every arena they touch would keep what they freed.
+  ddgi::service::limit_malloc_arenas(4);
   const ddgi::Status status = ddgi::service::run(argc, argv);
   if (!status.ok()) {
     std::fprintf(stderr, "ddgi-server: %s\n", status.error().message.c_str());

@@ -68,6 +68,19 @@ Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldPara
   return field_param_table().apply(scratch, assignments_of(params));
 }
 
+// Loading a library scene fails with messages naming server files: the client gets them
+// without absolute paths (SceneLibrary::without_server_paths), the log keeps them whole.
+Completion without_server_paths(const SceneLibrary& library, Completion done) {
+  return [&library, done = std::move(done)](const Status& status) {
+    if (status.ok()) return done(status);
+    const Error shown = library.without_server_paths(status.error());
+    if (shown.message != status.error().message) {
+      LOG_INFO << "scene load failed: " << status.error().message;
+    }
+    done(shown);
+  };
+}
+
 }  // namespace
 
 RenderServiceImpl::RenderServiceImpl(vk::Context& context, const ServiceLimits& limits,
@@ -192,6 +205,7 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
                                                            const v1::CreateSessionRequest* request,
                                                            v1::SessionInfo* reply) {
   return unary(context, "CreateSession", "", [&](Completion& done) -> Status {
+    if (request->scene().has_name()) done = without_server_paths(library_, std::move(done));
     if (shutting_down_) return unavailable("the server is shutting down");
     DDGI_ASSIGN_OR_RETURN(
         SceneRequest scene,
@@ -231,6 +245,7 @@ grpc::ServerUnaryReactor* RenderServiceImpl::LoadScene(grpc::CallbackServerConte
                                                        const v1::LoadSceneRequest* request,
                                                        v1::SessionInfo* reply) {
   return unary(context, "LoadScene", request->session_id(), [&](Completion& done) -> Status {
+    if (request->scene().has_name()) done = without_server_paths(library_, std::move(done));
     DDGI_ASSIGN_OR_RETURN(
         SceneRequest scene,
         scene_request(request->scene(), request->warmup_updates(), request->has_warmup_updates()));

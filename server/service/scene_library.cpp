@@ -31,7 +31,59 @@ bool name_char(char c) {
          c == '-' || c == '.';
 }
 
+bool path_may_start_after(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\'' || c == '"' || c == '`' || c == '(' ||
+         c == '[' || c == '=' || c == ',';
+}
+
+bool path_ends_at(const std::string& text, size_t i) {
+  const char c = text[i];
+  if (c == ' ' || c == '\t' || c == '\n' || c == '\'' || c == '"' || c == '`' || c == ')' ||
+      c == ']' || c == ',' || c == ';') {
+    return true;
+  }
+  return c == ':' && (i + 1 == text.size() || text[i + 1] == ' ');
+}
+
 }  // namespace
+
+std::string redact_paths(const std::string& text, const std::vector<std::string>& roots,
+                         const std::string& root_label) {
+  std::string out;
+  size_t i = 0;
+  while (i < text.size()) {
+    const bool starts = text[i] == '/' && (i == 0 || path_may_start_after(text[i - 1])) &&
+                        i + 1 < text.size() && !path_ends_at(text, i + 1);
+    if (!starts) {
+      out += text[i++];
+      continue;
+    }
+    size_t end = i;
+    while (end < text.size() && !path_ends_at(text, end)) ++end;
+    const std::string path = text.substr(i, end - i);
+    std::string shown;
+    for (const std::string& root : roots) {
+      if (path == root || path == root + "/") {
+        shown = root_label;
+        break;
+      }
+      if (path.size() > root.size() + 1 && path.compare(0, root.size(), root) == 0 &&
+          path[root.size()] == '/') {
+        shown = root_label + path.substr(root.size());
+        break;
+      }
+    }
+    if (shown.empty()) {
+      std::string name = path;
+      while (!name.empty() && name.back() == '/') name.pop_back();
+      name = name.substr(name.find_last_of('/') + 1);
+      shown = name.empty() ? "..." : ".../" + name;
+    }
+    out += shown;
+    i = end;
+  }
+  return out;
+}
 
 Status validate_scene_name(const std::string& name) {
   if (name.empty()) return invalid_argument("scene name is empty");
@@ -97,6 +149,24 @@ Result<std::string> SceneLibrary::resolve(const std::string& name) const {
   }
   return not_found("no scene named " + printable(name) + " in the scene library (" +
                    std::to_string(entries.size()) + " scenes; GetServerInfo.scenes lists them)");
+}
+
+Error SceneLibrary::without_server_paths(const Error& error) const {
+  // The root as configured, made absolute, and with every symbolic link resolved (the loader
+  // names files by their canonical paths); the longest first, so that a root inside another
+  // is tried before it.
+  std::vector<std::string> roots;
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(root_, ec);
+  for (std::filesystem::path root :
+       {std::filesystem::path(root_), absolute, std::filesystem::weakly_canonical(absolute, ec)}) {
+    std::string text = root.lexically_normal().string();
+    while (text.size() > 1 && text.back() == '/') text.pop_back();
+    if (!text.empty() && text.front() == '/' && text != "/") roots.push_back(text);
+  }
+  std::sort(roots.begin(), roots.end(),
+            [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
+  return Error{error.code, redact_paths(error.message, roots, "<library>")};
 }
 
 }  // namespace ddgi::service

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "core/log.h"
+#include "service/process_memory.h"
 #include "service/text.h"
 
 namespace ddgi::service {
@@ -48,6 +49,9 @@ Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::S
   env.metrics->sessions.fetch_add(1);
   env.metrics->sessions_created.fetch_add(1);
   env.on_loop_exit = [tracker] {
+    // The session's scene, fields and frame buffers are freed by now; without this, their
+    // memory would stay resident in the loop thread's malloc arena.
+    release_free_memory();
     std::lock_guard<std::mutex> lock(tracker->mutex);
     --tracker->live;
     tracker->done.notify_all();

@@ -1,5 +1,6 @@
 // Bearer-token auth: missing or wrong tokens are UNAUTHENTICATED on every RenderService call
-// (unary and streaming); the health service answers without one; tokens never reach the log.
+// (unary and streaming), the scheme in any case; the health service and (by decision)
+// reflection answer without one; tokens never reach the log.
 #include <unistd.h>
 
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <sstream>
 
 #include "grpc/health/v1/health.grpc.pb.h"
+#include "tests/service/reflection_probe.h"
 #include "tests/service/service_fixture.h"
 
 namespace ddgi::test {
@@ -73,6 +75,22 @@ TEST_F(AuthTest, RightTokenWorks) {
   EXPECT_TRUE(stream.wait_for(2, 30.0));
 }
 
+// HTTP authentication schemes are case-insensitive (RFC 9110 section 11.1), and one or more
+// spaces may follow the scheme; the token itself is compared exactly.
+TEST_F(AuthTest, SchemeIsCaseInsensitive) {
+  for (const char* scheme : {"Bearer ", "bearer ", "BEARER ", "bEaReR ", "Bearer   "}) {
+    const grpc::Status status = info_with(scheme + std::string(kToken));
+    EXPECT_TRUE(status.ok()) << "'" << scheme << "': " << status.error_message();
+  }
+  for (const std::string& refused :
+       {std::string("Bearer") + kToken, std::string("Basic ") + kToken,
+        std::string("bearer S3CRET-T0KEN-FOR-TESTS"), std::string("bearer x") + kToken,
+        std::string("bearer "), std::string("bearer")}) {
+    const grpc::Status status = info_with(refused);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << "'" << refused << "'";
+  }
+}
+
 TEST_F(AuthTest, HealthAnswersWithoutToken) {
   auto health = grpc::health::v1::Health::NewStub(channel_);
   grpc::ClientContext ctx;
@@ -81,6 +99,16 @@ TEST_F(AuthTest, HealthAnswersWithoutToken) {
   const grpc::Status status = health->Check(&ctx, request, &response);
   ASSERT_TRUE(status.ok()) << status.error_message();
   EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+// Decided (docs/service.md, "Auth and TLS"): reflection stays open like health. It describes
+// only the published API (render_service.proto, health, reflection), nothing of the server's
+// state; gRPC offers no hook in front of its reflection service, and --no-reflection closes it.
+TEST_F(AuthTest, ReflectionAnswersWithoutTokenByDecision) {
+  const ReflectionAnswer answer = list_services(channel_);
+  ASSERT_TRUE(answer.status.ok()) << answer.status.error_message();
+  EXPECT_NE(answer.text.find("ddgi.v1.RenderService"), std::string::npos);
+  EXPECT_EQ(answer.text.find(kToken), std::string::npos);
 }
 
 // TLS: the server presents a certificate made for this test; a client trusting it connects, a

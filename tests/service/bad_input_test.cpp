@@ -202,6 +202,32 @@ TEST_F(BadInputTest, CorruptGlbUpload) {
   expect_error(upload(""), grpc::StatusCode::INVALID_ARGUMENT, {"scene.glb is empty"});
 }
 
+// References of the wrong type or out of range are refused with their JSON path (issue 18),
+// not dropped: the node would silently lose its mesh. Edits keep the JSON chunk's length.
+TEST_F(BadInputTest, WronglyTypedReferencesInUpload) {
+  const std::string valid = make_floor_glb();
+  const std::string node = R"("name":"floor","mesh":0)";
+  ASSERT_NE(valid.find(node), std::string::npos);
+  const std::string label = "upload:" + std::to_string(valid.size()) + ": ";
+  const std::pair<const char*, const char*> cases[] = {
+      {R"("name":"floo","mesh":-1)",
+       "nodes[0].mesh: expected a non-negative integer index, got -1"},
+      {R"("name":"f","mesh":"abc")",
+       "nodes[0].mesh: expected a non-negative integer index, got \"abc\""},
+      {R"("name":"flo","mesh":1.5)",
+       "nodes[0].mesh: expected a non-negative integer index, got 1.5"},
+      {R"("name":"floor","mesh":9)", "nodes[0].mesh = 9 does not exist (the file has 1 meshes)"},
+  };
+  for (const auto& [edit, reason] : cases) {
+    SCOPED_TRACE(edit);
+    ASSERT_EQ(std::string(edit).size(), node.size());
+    std::string glb = valid;
+    glb.replace(glb.find(node), node.size(), edit);
+    const std::string expected = label + reason;
+    expect_error(upload(glb), grpc::StatusCode::INVALID_ARGUMENT, {expected.c_str()});
+  }
+}
+
 TEST_F(BadInputTest, Resolution0And100000) {
   expect_error(render_size(0, 12), grpc::StatusCode::INVALID_ARGUMENT,
                {"width 0 is out of range", "[1, 1024]", "--max-width"});

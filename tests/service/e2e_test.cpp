@@ -599,7 +599,7 @@ TEST_F(E2eTest, MetricsEndpointServesPrometheusText) {
   char buffer[4096];
   while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) body.append(buffer, n);
   pclose(pipe);
-  EXPECT_EQ(body.rfind("HTTP/1.0 200 OK", 0), 0u) << body.substr(0, 200);
+  EXPECT_EQ(body.rfind("HTTP/1.1 200 OK", 0), 0u) << body.substr(0, 200);
   for (const char* name :
        {"ddgi_sessions 1", "ddgi_frames_rendered_total", "ddgi_frames_dropped_total",
         "ddgi_frame_seconds_bucket", "ddgi_gi_update_seconds_count", "ddgi_encode_seconds_sum",

@@ -3,7 +3,10 @@
 // LoadScene with unknown and path-like names, and reflection turned off by its flag.
 #include <signal.h>
 
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/service/reflection_probe.h"
 #include "tests/service/server_process.h"
@@ -18,10 +21,11 @@ constexpr uint32_t kMaxLights = 2;  // cornell_box brings one
 
 class ServiceLimitsTest : public ServiceTest {
  protected:
-  void configure(service::ServerOptions& options) override {
-    options.limits.max_message_bytes = kMessageBytes;
-    options.limits.max_views_per_session = kMaxViews;
-    options.limits.max_lights = kMaxLights;
+  void configure(service::ServerOptions& options) override { configure_limits(options.limits); }
+  static void configure_limits(service::ServiceLimits& limits) {
+    limits.max_message_bytes = kMessageBytes;
+    limits.max_views_per_session = kMaxViews;
+    limits.max_lights = kMaxLights;
   }
   static void expect_error(const grpc::Status& status, grpc::StatusCode code,
                            std::initializer_list<std::string> words) {
@@ -161,6 +165,85 @@ TEST_F(ServiceLimitsTest, LoadSceneUnknownOrPathLikeName) {
   EXPECT_EQ(info.scene(), "cornell_box");
   EXPECT_GT(info.triangles(), 0u);
   expect_renders(session);
+}
+
+// Pads a request with an unknown length-delimited field (field 1000, which no request has) so
+// that it serializes to about `bytes`.
+template <typename Request>
+Request padded(Request request, size_t bytes) {
+  const size_t base = request.ByteSizeLong();
+  const size_t pad = bytes > base + 8 ? bytes - base - 8 : 0;
+  request.GetReflection()->MutableUnknownFields(&request)->AddLengthDelimited(1000)->assign(pad,
+                                                                                            'x');
+  return request;
+}
+
+// The receive limit is a property of the gRPC server, not of a method: gRPC C++ has no
+// per-method receive limit on the server (its message-size filter takes per-method limits only
+// from a client's service config), so every RPC accepts a request as large as an upload
+// (docs/service.md, "Limits and their errors"). This pins the limit each RPC has: a request of
+// twice --max-message-bytes reaches the handler (refused for what it says, never for its size),
+// one a KiB over max_receive_bytes is refused by gRPC before any handler runs.
+TEST_F(ServiceLimitsTest, ReceiveLimitIsTheSameForEveryRpc) {
+  service::ServiceLimits limits = test_server_options().limits;
+  configure_limits(limits);
+  const uint64_t receive = service::max_receive_bytes(limits);
+  ASSERT_GT(receive, 2 * kMessageBytes);
+  std::printf("--max-message-bytes %llu, receive limit %llu bytes\n",
+              static_cast<unsigned long long>(kMessageBytes),
+              static_cast<unsigned long long>(receive));
+  v1::RenderService::Stub& stub = *stub_;
+  // Each sends a request of about `bytes` and returns how the call ended.
+  auto unary = [&](auto method, auto request, auto reply) {
+    return [&stub, method, request, reply](size_t bytes) mutable {
+      grpc::ClientContext ctx;
+      ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+      return (stub.*method)(&ctx, padded(request, bytes), &reply);
+    };
+  };
+  auto streaming = [&](auto method, auto request, auto reply) {
+    return [&stub, method, request, reply](size_t bytes) mutable {
+      grpc::ClientContext ctx;
+      ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+      auto reader = (stub.*method)(&ctx, padded(request, bytes));
+      while (reader->Read(&reply)) {
+      }
+      return reader->Finish();
+    };
+  };
+  v1::GetSessionRequest get_session;
+  get_session.set_session_id("s-unknown");
+  v1::StreamFramesRequest stream;
+  stream.set_session_id("s-unknown");
+  v1::DumpAtlasRequest dump;
+  dump.set_session_id("s-unknown");
+  v1::SetCameraRequest camera;
+  camera.set_session_id("s-unknown");
+  const std::vector<std::pair<const char*, std::function<grpc::Status(size_t)>>> rpcs = {
+      {"GetServerInfo", unary(&v1::RenderService::Stub::GetServerInfo, v1::GetServerInfoRequest(),
+                              v1::ServerInfo())},
+      {"CreateSession", unary(&v1::RenderService::Stub::CreateSession, v1::CreateSessionRequest(),
+                              v1::SessionInfo())},
+      {"LoadScene",
+       unary(&v1::RenderService::Stub::LoadScene, v1::LoadSceneRequest(), v1::SessionInfo())},
+      {"ListSessions", unary(&v1::RenderService::Stub::ListSessions, v1::ListSessionsRequest(),
+                             v1::ListSessionsReply())},
+      {"GetSession", unary(&v1::RenderService::Stub::GetSession, get_session, v1::SessionInfo())},
+      {"SetCamera", unary(&v1::RenderService::Stub::SetCamera, camera, v1::ViewInfo())},
+      {"StreamFrames", streaming(&v1::RenderService::Stub::StreamFrames, stream, v1::Frame())},
+      {"DumpAtlas", streaming(&v1::RenderService::Stub::DumpAtlas, dump, v1::AtlasChunk())},
+  };
+  for (const auto& [name, call] : rpcs) {
+    SCOPED_TRACE(name);
+    const grpc::Status under = call(2 * kMessageBytes);
+    EXPECT_NE(under.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << under.error_message();
+    const grpc::Status over = call(receive + 1024);
+    expect_error(over, grpc::StatusCode::RESOURCE_EXHAUSTED, {"Received message larger than max"});
+    std::printf("%-14s %7llu bytes: code %2d; %7llu bytes: code %2d '%s'\n", name,
+                static_cast<unsigned long long>(2 * kMessageBytes), int(under.error_code()),
+                static_cast<unsigned long long>(receive + 1024), int(over.error_code()),
+                over.error_message().c_str());
+  }
 }
 
 // Reflection's plugin is process-wide once registered, so the flag is tested on a process.

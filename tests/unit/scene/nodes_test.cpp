@@ -163,7 +163,8 @@ TEST(Nodes, BadReferencesAndTransformsAreRefused) {
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("nodes[0].children[0] = 4 does not exist"));
   b = testing::triangle_builder();
   b.doc()["scenes"][0]["nodes"] = {-1};
-  EXPECT_THAT(error_of(load_text(b)), HasSubstr("scenes[0].nodes[0] = -1 does not exist"));
+  EXPECT_THAT(error_of(load_text(b)),
+              HasSubstr("scenes[0].nodes[0]: expected a non-negative integer index, got -1"));
   b = testing::triangle_builder();
   b.doc()["nodes"][0]["matrix"] = {1, 0, 0};
   EXPECT_THAT(error_of(load_text(b)), HasSubstr("nodes[0].matrix has 3 values"));
