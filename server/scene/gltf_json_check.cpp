@@ -170,50 +170,44 @@ class Checker {
     return wrong(path, range.c_str(), *value);
   }
 
+  // A member that, when present, must be one JSON type (`expected` names it in the message).
+  static Status typed(const json& object, const char* key, const std::string& where,
+                      bool (json::*is)() const noexcept, const char* expected) {
+    const json* value = find(object, key);
+    if (value != nullptr && !(value->*is)()) {
+      return wrong(member_path(where, key), expected, *value);
+    }
+    return ok_status();
+  }
+
+  // A member that, when present, must be an array of one JSON type.
+  static Status typed_list(const json& object, const char* key, const std::string& where,
+                           bool (json::*is)() const noexcept, const char* expected,
+                           const char* expected_list) {
+    const json* list = find(object, key);
+    if (list == nullptr) return ok_status();
+    const std::string path = member_path(where, key);
+    if (!list->is_array()) return wrong(path, expected_list, *list);
+    for (size_t i = 0; i < list->size(); ++i) {
+      if (!((*list)[i].*is)()) return wrong(item(path, i), expected, (*list)[i]);
+    }
+    return ok_status();
+  }
+
   static Status number(const json& object, const char* key, const std::string& where) {
-    const json* value = find(object, key);
-    if (value != nullptr && !value->is_number()) {
-      return wrong(member_path(where, key), "a number", *value);
-    }
-    return ok_status();
+    return typed(object, key, where, &json::is_number, "a number");
   }
-
   static Status numbers(const json& object, const char* key, const std::string& where) {
-    const json* list = find(object, key);
-    if (list == nullptr) return ok_status();
-    const std::string path = member_path(where, key);
-    if (!list->is_array()) return wrong(path, "an array of numbers", *list);
-    for (size_t i = 0; i < list->size(); ++i) {
-      if (!(*list)[i].is_number()) return wrong(item(path, i), "a number", (*list)[i]);
-    }
-    return ok_status();
+    return typed_list(object, key, where, &json::is_number, "a number", "an array of numbers");
   }
-
   static Status string(const json& object, const char* key, const std::string& where) {
-    const json* value = find(object, key);
-    if (value != nullptr && !value->is_string()) {
-      return wrong(member_path(where, key), "a string", *value);
-    }
-    return ok_status();
+    return typed(object, key, where, &json::is_string, "a string");
   }
-
   static Status strings(const json& object, const char* key, const std::string& where) {
-    const json* list = find(object, key);
-    if (list == nullptr) return ok_status();
-    const std::string path = member_path(where, key);
-    if (!list->is_array()) return wrong(path, "an array of strings", *list);
-    for (size_t i = 0; i < list->size(); ++i) {
-      if (!(*list)[i].is_string()) return wrong(item(path, i), "a string", (*list)[i]);
-    }
-    return ok_status();
+    return typed_list(object, key, where, &json::is_string, "a string", "an array of strings");
   }
-
   static Status boolean(const json& object, const char* key, const std::string& where) {
-    const json* value = find(object, key);
-    if (value != nullptr && !value->is_boolean()) {
-      return wrong(member_path(where, key), "true or false", *value);
-    }
-    return ok_status();
+    return typed(object, key, where, &json::is_boolean, "true or false");
   }
 
   static Status name(const json& object, const std::string& where) {
