@@ -15,6 +15,7 @@ namespace ddgi::service {
 Session::Session(std::string id, SessionEnv env, SessionOptions options)
     : env_(std::move(env)),
       state_(id, unix_micros(), std::move(options), *env_.limits, *env_.metrics),
+      one_off_slots_(id, env_.limits->max_one_off_frames),
       loop_(id, env_.limits->max_fps, *this) {
   to_proto(state_, 0, &summary_);
 }
@@ -295,6 +296,14 @@ Status Session::queue_waiter(const std::string& view_id, FrameWaiter& waiter) {
 
 void Session::render_frame(std::string view_id, ViewConfig config, std::optional<v1::Camera> camera,
                            FrameWaiter waiter) {
+  if (view_id.empty()) {
+    // Bounded before it is queued: a refused call costs the session nothing.
+    const Status slot = one_off_slots_.take(waiter);
+    if (!slot.ok()) {
+      waiter(slot.error());
+      return;
+    }
+  }
   auto shared_waiter = std::make_shared<FrameWaiter>(std::move(waiter));
   loop_.enqueue(
       false,

@@ -24,6 +24,7 @@
 #include "service/frame_stream.h"
 #include "service/limits.h"
 #include "service/metrics.h"
+#include "service/one_off_frames.h"
 #include "service/session_loop.h"
 #include "service/session_scene.h"
 #include "service/session_state.h"
@@ -139,6 +140,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   // Shared with RPC threads.
   mutable std::mutex summary_mutex_;
   v1::SessionSummary summary_;
+  OneOffSlots one_off_slots_;
   SessionLoop loop_;
 };
 

@@ -68,8 +68,8 @@ void Session::render_one_offs(FrameBatch& batch) {
   for (OneOffFrame& one_off : state_.one_offs.take()) {
     Result<std::unique_ptr<EncodeJob>> job = [&]() -> Result<std::unique_ptr<EncodeJob>> {
       DDGI_ASSIGN_OR_RETURN(
-          std::unique_ptr<FrameTarget> target,
-          FrameTarget::create(*env_.context, one_off.config.width, one_off.config.height));
+          FrameTarget * target,
+          state_.one_offs.target(*env_.context, one_off.config.width, one_off.config.height));
       return render_job(batch, "", one_off.config, one_off.camera, *target);
     }();
     if (!job.ok()) {
