@@ -44,7 +44,12 @@ Result<FrameTarget*> OneOffFrames::target(vk::Context& context, uint32_t width, 
     std::rotate(targets_.begin(), kept, kept + 1);
     return targets_.front().get();
   }
-  if (targets_.size() >= kKeptTargets) targets_.pop_back();
+  if (targets_.size() >= kKeptTargets) {
+    targets_.pop_back();
+    // Its frames were waited for: free its memory now, not at the end of the loop iteration,
+    // so that an iteration of many sizes holds no more than kKeptTargets of them.
+    context.collect_garbage();
+  }
   DDGI_ASSIGN_OR_RETURN(std::unique_ptr<FrameTarget> made,
                         FrameTarget::create(context, width, height));
   targets_.insert(targets_.begin(), std::move(made));

@@ -57,7 +57,7 @@ class OneOffFrames {
   // The frames waiting for the next frame, in arrival order; none wait afterwards.
   std::vector<OneOffFrame> take();
   // A target of this size: a kept one, or a new one that replaces the least recently used
-  // (freed first, so that the budget sees only the new one).
+  // (freed first, budget and memory, so that neither sees more than kKeptTargets).
   Result<FrameTarget*> target(vk::Context& context, uint32_t width, uint32_t height);
   // Teardown: every waiting call gets `error`, the kept targets are freed.
   void close_all(const Error& error);
