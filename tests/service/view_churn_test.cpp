@@ -14,7 +14,9 @@ namespace {
 // three runs: 24.7 fps before; 25.0, 25.0 and 24.7 fps during 3 s of churn at 1000-1400
 // CreateView+DeleteView pairs a second (CreateView 0.36-0.49 ms mean, 11-15 ms at most); the
 // loop takes a command between frames, and a view costs no GPU work until its first frame.
-// The bound is 70% of the rate before.
+// The bound is 70% of the rate before. On the code before views shared the session's renderer
+// (ecfe2aa) this test fails: 24.7 fps before, 9.3 and 10.0 fps during, 10 pairs a second,
+// CreateView 93-98 ms mean and 128-129 ms at most.
 constexpr double kKeptFraction = 0.7;
 constexpr double kSeconds = 3.0;
 constexpr int kMaxPairs = 20000;
