@@ -7,6 +7,9 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include "gi/field_params.h"
+#include "gi/shadow_params.h"
+
 namespace ddgi::service {
 namespace {
 
@@ -384,6 +387,146 @@ Result<DirectMode> direct_mode_from_proto(v1::DirectMode mode) {
     default:
       return invalid_argument("direct_mode " + std::to_string(int(mode)) + " is not a DirectMode");
   }
+}
+
+// ---- The session's state, outbound -------------------------------------------------------------
+
+void to_proto(const SessionView& view, v1::ViewInfo* out) {
+  out->set_view_id(view.id);
+  to_proto(view.config, out->mutable_settings());
+  to_proto(view.camera, out->mutable_camera());
+  out->set_command_seq(view.seq);
+}
+
+void to_proto(const LightSlot& slot, v1::LightEntry* out) {
+  out->set_light_id(slot.id);
+  to_proto(slot.light, out->mutable_light());
+}
+
+void to_proto(const LightSlot& slot, uint64_t command_seq, v1::LightReply* out) {
+  to_proto(slot, out->mutable_light());
+  out->set_command_seq(command_seq);
+}
+
+namespace {
+
+void instance_to_proto(const GpuScene& scene, uint32_t index, v1::Instance* out) {
+  const Instance& instance = scene.scene().instances[index];
+  out->set_index(index);
+  out->set_name(instance.name);
+  to_proto(instance.transform, out->mutable_transform());
+}
+
+}  // namespace
+
+namespace {
+
+// Every parameter of `table` with its value in `values`.
+template <typename P>
+void add_param_values(const ParamTable<P>& table, const P& values, v1::FieldParams* params) {
+  for (const ParamSpec<P>& spec : table.specs()) {
+    auto* p = params->add_params();
+    p->set_name(spec.name);
+    p->set_value(spec.format(values));
+  }
+}
+
+}  // namespace
+
+void to_proto(const GpuScene& scene, uint32_t index, uint64_t command_seq, v1::InstanceReply* out) {
+  instance_to_proto(scene, index, out->mutable_instance());
+  out->set_command_seq(command_seq);
+}
+
+void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParams* out) {
+  out->Clear();
+  out->set_field(v1::FIELD_KIND_IRRADIANCE);
+  add_param_values(field_param_table(), field.params(), out);
+  out->set_probes(probe_count(field.params()));
+  out->set_gpu_bytes(field.gpu_bytes());
+  out->set_updates(field.updates());
+  out->set_command_seq(command_seq);
+  const ProbeStateCounts counts = field.probe_counts();
+  v1::ProbeStateCounts* states = out->mutable_probe_states();
+  states->set_vigilant(counts.vigilant);
+  states->set_awake(counts.awake);
+  states->set_sleeping(counts.sleeping);
+  states->set_off(counts.off);
+}
+
+void to_proto(const ShadowField& field, uint64_t command_seq, v1::FieldParams* out) {
+  out->Clear();
+  out->set_field(v1::FIELD_KIND_SHADOW);
+  add_param_values(shadow_param_table(), field.params(), out);
+  out->set_probes(probe_count(field.params()));
+  out->set_gpu_bytes(field.gpu_bytes());
+  out->set_updates(field.updates());
+  out->set_command_seq(command_seq);
+}
+
+void to_proto(const SessionState& session, uint64_t frames, uint64_t command_seq,
+              v1::SessionInfo* out) {
+  out->Clear();
+  out->set_session_id(session.id);
+  out->set_frames(frames);
+  out->set_command_seq(command_seq);
+  const SessionScene* scene = session.scene.get();
+  if (!scene) {
+    to_proto(Camera{}, out->mutable_default_camera());
+    return;
+  }
+  out->set_scene(scene->label());
+  out->set_gi(scene->field() != nullptr);
+  for (const std::string& warning : scene->warnings()) out->add_warnings(warning);
+  to_proto(scene->default_camera(), out->mutable_default_camera());
+  out->set_triangles(scene->gpu_scene().triangle_count());
+  out->set_gpu_bytes(scene->gpu_bytes());
+  const size_t instances = scene->gpu_scene().scene().instances.size();
+  for (size_t i = 0; i < instances; ++i) {
+    instance_to_proto(scene->gpu_scene(), static_cast<uint32_t>(i), out->add_instances());
+  }
+  for (const LightSlot& slot : scene->lights().slots()) to_proto(slot, out->add_lights());
+  for (const auto& [view_id, view] : session.views.all()) to_proto(view, out->add_views());
+  if (scene->field()) to_proto(*scene->field(), command_seq, out->mutable_field());
+}
+
+void to_proto(const SessionState& session, uint64_t frames, v1::SessionSummary* out) {
+  out->set_session_id(session.id);
+  out->set_created_unix_us(session.created_unix_us);
+  out->set_scene(session.scene ? session.scene->label() : "");
+  out->set_views(static_cast<uint32_t>(session.views.size()));
+  out->set_streams(session.views.stream_count());
+  out->set_frames(frames);
+}
+
+void to_proto(const FrameRecord& frame, v1::Frame* out) {
+  out->set_session_id(frame.session_id);
+  out->set_view_id(frame.view_id);
+  out->set_frame_index(frame.index);
+  out->set_width(frame.width);
+  out->set_height(frame.height);
+  to_proto(frame.camera, out->mutable_camera());
+  double gpu_ms = 0.0;
+  for (const auto* passes : {&frame.gi_passes, &frame.view_passes}) {
+    for (const vk::PassTime& pass : *passes) {
+      auto* p = out->add_passes();
+      p->set_name(pass.name);
+      p->set_milliseconds(pass.milliseconds);
+      gpu_ms += pass.milliseconds;
+    }
+  }
+  out->set_gpu_ms(gpu_ms);
+  out->set_gi_update_ms(frame.gi_ms);
+  out->set_last_command_seq(frame.last_applied.seq);
+  out->set_last_command_arrival_unix_us(frame.last_applied.arrival_unix_us);
+  out->set_rendered_unix_us(frame.rendered_unix_us);
+  out->set_field_updates(frame.field_updates);
+}
+
+void to_proto(const std::vector<glm::vec3>& irradiance, uint64_t field_updates,
+              v1::QueryIrradianceReply* out) {
+  for (const glm::vec3& value : irradiance) to_proto(value, out->add_irradiance());
+  out->set_field_updates(field_updates);
 }
 
 }  // namespace ddgi::service

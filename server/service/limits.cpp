@@ -20,6 +20,7 @@ Status check_range(const char* flag, T value, T min, T max) {
 Status validate(const ServiceLimits& l) {
   DDGI_TRY(check_range<uint32_t>("max-sessions", l.max_sessions, 1, 1024));
   DDGI_TRY(check_range<uint32_t>("max-views-per-session", l.max_views_per_session, 1, 256));
+  DDGI_TRY(check_range<uint32_t>("max-one-off-frames", l.max_one_off_frames, 1, 256));
   DDGI_TRY(check_range<uint32_t>("max-width", l.max_width, 1, 16384));
   DDGI_TRY(check_range<uint32_t>("max-height", l.max_height, 1, 16384));
   DDGI_TRY(

@@ -12,8 +12,12 @@ namespace ddgi::service {
 struct ServiceLimits {
   // Default 8, range [1, 1024]: each session holds a scene, a field and a frame-loop thread.
   uint32_t max_sessions = 8;
-  // Default 16, range [1, 256]: each view holds its own frame buffers and kernels.
+  // Default 16, range [1, 256]: each view holds its own frame buffers.
   uint32_t max_views_per_session = 16;
+  // Default 8, range [1, 256]: one-off frames (RenderFrame without a view id) of one session in
+  // flight at once, from the call to its reply; each holds its settings, its image and its reply
+  // until then. Calls beyond it are refused at once (RESOURCE_EXHAUSTED).
+  uint32_t max_one_off_frames = 8;
   // Default 3840 x 2160 (4K UHD), range [1, 16384] each (the renderer's own limit).
   uint32_t max_width = 3840;
   uint32_t max_height = 2160;

@@ -27,6 +27,7 @@ health turns NOT_SERVING, streams end with OK, the process exits within --shutdo
   --port-file FILE          write the port listened on to FILE (for scripts)
   --scene-root DIR          the scene library folder                  [the repo's scenes/]
   --max-sessions N          [8]       --max-views-per-session N  [16]
+  --max-one-off-frames N    one-off RenderFrame calls in flight per session  [8]
   --max-width N             [3840]    --max-height N             [2160]
   --max-message-bytes N     largest message sent or received       [16777216]
   --max-upload-bytes N      largest uploaded .glb                  [67108864]
@@ -79,6 +80,7 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "scene-root",
                        "max-sessions",
                        "max-views-per-session",
+                       "max-one-off-frames",
                        "max-width",
                        "max-height",
                        "max-message-bytes",
@@ -121,6 +123,8 @@ Result<ServiceLimits> service_limits(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(l.max_sessions, get_u32("max-sessions", l.max_sessions, 1 << 20));
   DDGI_ASSIGN_OR_RETURN(l.max_views_per_session,
                         get_u32("max-views-per-session", l.max_views_per_session, 1 << 20));
+  DDGI_ASSIGN_OR_RETURN(l.max_one_off_frames,
+                        get_u32("max-one-off-frames", l.max_one_off_frames, 1 << 20));
   DDGI_ASSIGN_OR_RETURN(l.max_width, get_u32("max-width", l.max_width, 1 << 20));
   DDGI_ASSIGN_OR_RETURN(l.max_height, get_u32("max-height", l.max_height, 1 << 20));
   DDGI_ASSIGN_OR_RETURN(l.max_query_points,

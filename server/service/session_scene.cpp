@@ -1,0 +1,90 @@
+// A session's loaded scene: loading, lights, frames (service/session_scene.h).
+#include "service/session_scene.h"
+
+#include <algorithm>
+
+#include "core/log.h"
+#include "gpu_scene/camera_fit.h"
+#include "scene/gltf_loader.h"
+
+namespace ddgi::service {
+namespace {
+
+Result<Scene> read_scene(const SceneRequest& request, const ServiceLimits& limits) {
+  SceneLimits scene_limits;
+  if (request.path.empty()) {
+    scene_limits.max_file_bytes = std::max<uint64_t>(limits.max_upload_bytes, 1024);
+    return load_glb_from_memory(request.upload, request.label, scene_limits);
+  }
+  return ::ddgi::load_scene(request.path, scene_limits);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<SessionScene>> SessionScene::load(vk::Context& context,
+                                                         const SceneRequest& request,
+                                                         const SessionOptions& options,
+                                                         const ServiceLimits& limits,
+                                                         const std::string& session_id) {
+  DDGI_ASSIGN_OR_RETURN(Scene scene, read_scene(request, limits));
+  for (const std::string& warning : scene.warnings) {
+    LOG_WARNING << "scene warning session=" << session_id << " scene=" << request.label << ": "
+                << warning;
+  }
+  DDGI_ASSIGN_OR_RETURN(
+      const GiStackOptions gi_options,
+      fitted_gi_options(scene, options.gi, options.direct_mode, options.field_assignments,
+                        options.shadow_assignments, context.default_backend()));
+  std::unique_ptr<SessionScene> loaded(new SessionScene());
+  DDGI_ASSIGN_OR_RETURN(loaded->gi_, GiStack::create(context, scene, gi_options));
+  // As ddgi-render does: fast convergence first, then the configured hysteresis.
+  DDGI_TRY(loaded->gi_->warm_up(request.warmup_updates));
+  loaded->context_ = &context;
+  loaded->label_ = request.label;
+  loaded->warnings_ = scene.warnings;
+  loaded->default_camera_ = ::ddgi::default_camera(scene);
+  loaded->lights_ = LightSet(loaded->gpu_scene().scene().lights);
+  IrradianceField* field = loaded->field();
+  LOG_INFO << "scene loaded session=" << session_id << " scene=" << request.label
+           << " triangles=" << loaded->gpu_scene().triangle_count()
+           << " lights=" << loaded->lights_.size()
+           << " gpu_bytes=" << loaded->gpu_scene().gpu_bytes() + (field ? field->gpu_bytes() : 0)
+           << " warmup=" << (field ? request.warmup_updates : 0);
+  return loaded;
+}
+
+uint64_t SessionScene::gpu_bytes() const {
+  return gpu_scene().gpu_bytes() + (field() ? field()->gpu_bytes() : 0) +
+         (shadow_field() ? shadow_field()->gpu_bytes() : 0);
+}
+
+Status SessionScene::upload_lights(const std::vector<Light>& lights) {
+  return gpu_scene().set_lights(lights);
+}
+
+Result<LightSlot> SessionScene::add_light(const Light& light) {
+  return lights_.add(light, [this](const auto& lights) { return upload_lights(lights); });
+}
+
+Result<LightSlot> SessionScene::update_light(uint32_t id, const Light& light) {
+  return lights_.update(id, light, [this](const auto& lights) { return upload_lights(lights); });
+}
+
+Result<LightSlot> SessionScene::remove_light(uint32_t id) {
+  return lights_.remove(id, [this](const auto& lights) { return upload_lights(lights); });
+}
+
+Result<FrameResult> SessionScene::render(const FrameSettings& settings, FrameTarget& target,
+                                         bool field_due) {
+  if (!renderer_) {
+    DDGI_ASSIGN_OR_RETURN(renderer_, Renderer::create(*context_, gi_->scene(), field(),
+                                                      context_->default_backend(), shadow_field()));
+  }
+  std::vector<vk::Pass> update;
+  if (field_due) {
+    DDGI_ASSIGN_OR_RETURN(update, gi_->frame_update(settings.direct_mode, {}));
+  }
+  return renderer_->render(settings, target, update);
+}
+
+}  // namespace ddgi::service

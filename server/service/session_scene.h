@@ -1,0 +1,82 @@
+// The scene a session has loaded: what it was loaded from (label, loader warnings, default
+// camera), its GI stack (the scene's GPU copy, the irradiance field, the shadow field), the
+// renderer whose kernels every view shares, and the session's lights. Replaced as a whole by
+// LoadScene; owned and used by the session's loop thread only.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "gi/gi_stack.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "service/light_set.h"
+#include "service/limits.h"
+#include "vk/context.h"
+
+namespace ddgi::service {
+
+// What the session's scene comes from and how its field starts.
+struct SceneRequest {
+  std::string label;            // "cornell_box" or "upload:<bytes>"
+  std::string path;             // a library file; empty for an upload
+  std::vector<uint8_t> upload;  // the .glb bytes of an upload
+  uint32_t warmup_updates = 16;
+};
+
+// How a session's scenes are set up (fixed when the session is created).
+struct SessionOptions {
+  bool gi = true;
+  DirectMode direct_mode = DirectMode::kTracedShadows;
+  std::vector<std::string> field_assignments;  // "name=value", applied over the scene's defaults
+  // Shadow-field "name=value" over the grid fitted to the scene; the field exists only in the
+  // shadow-field and AO direct modes.
+  std::vector<std::string> shadow_assignments;
+};
+
+class SessionScene {
+ public:
+  // Loads the scene (a library file, or an upload within the upload limit), builds its GI stack
+  // and runs the warm-up. `session_id` is for the log.
+  static Result<std::unique_ptr<SessionScene>> load(vk::Context& context,
+                                                    const SceneRequest& request,
+                                                    const SessionOptions& options,
+                                                    const ServiceLimits& limits,
+                                                    const std::string& session_id);
+
+  const std::string& label() const { return label_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const Camera& default_camera() const { return default_camera_; }
+  GpuScene& gpu_scene() const { return gi_->scene(); }
+  IrradianceField* field() const { return gi_->field(); }
+  ShadowField* shadow_field() const { return gi_->shadow_field(); }
+  // The scene's and both fields' GPU bytes.
+  uint64_t gpu_bytes() const;
+
+  const LightSet& lights() const { return lights_; }
+  // As LightSet's, uploading to the GPU scene.
+  Result<LightSlot> add_light(const Light& light);
+  Result<LightSlot> update_light(uint32_t id, const Light& light);
+  Result<LightSlot> remove_light(uint32_t id);
+
+  // Renders a frame into `target`, after one update of each field when `field_due`. The
+  // renderer is built at the first frame.
+  Result<FrameResult> render(const FrameSettings& settings, FrameTarget& target, bool field_due);
+
+ private:
+  SessionScene() = default;
+  Status upload_lights(const std::vector<Light>& lights);
+
+  vk::Context* context_ = nullptr;
+  std::string label_;
+  std::vector<std::string> warnings_;
+  Camera default_camera_;
+  std::unique_ptr<GiStack> gi_;
+  std::unique_ptr<Renderer> renderer_;  // after gi_: it points at its scene and fields
+  LightSet lights_;
+};
+
+}  // namespace ddgi::service
