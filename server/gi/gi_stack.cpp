@@ -97,8 +97,4 @@ Status GiStack::update(uint32_t count) {
   return ok_status();
 }
 
-uint64_t GiStack::field_bytes() const {
-  return (field_ ? field_->gpu_bytes() : 0) + (shadow_field_ ? shadow_field_->gpu_bytes() : 0);
-}
-
 }  // namespace ddgi

@@ -77,8 +77,6 @@ class GiStack {
   Result<std::vector<vk::Pass>> frame_update(DirectMode frame_mode, const GiUpdates& updates) {
     return gi_update_passes(field_.get(), shadow_field_.get(), frame_mode, updates);
   }
-  // GPU bytes of the fields (the scene's are GpuScene::gpu_bytes()).
-  uint64_t field_bytes() const;
 
  private:
   explicit GiStack(GiStackOptions options) : options_(std::move(options)) {}

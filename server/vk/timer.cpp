@@ -88,20 +88,6 @@ Result<std::vector<PassTime>> GpuTimer::read() {
   return times;
 }
 
-const char* pass_group_name(PassGroup group) {
-  switch (group) {
-    case PassGroup::kShadowField:
-      return "shadow field";
-    case PassGroup::kIrradianceField:
-      return "irradiance field";
-    case PassGroup::kFrame:
-      return "frame";
-    case PassGroup::kReadback:
-      return "readback";
-  }
-  return "?";
-}
-
 double group_milliseconds(const std::vector<PassTime>& times, PassGroup group) {
   double sum = 0.0;
   for (const PassTime& t : times) {

@@ -20,8 +20,6 @@ enum class PassGroup : uint8_t {
   kFrame,            // the frame's own passes (primary, direct, indirect, views, tone mapping)
   kReadback,         // copies of results to host-visible memory
 };
-// "shadow field", "irradiance field", "frame", "readback".
-const char* pass_group_name(PassGroup group);
 
 struct PassTime {
   std::string name;
