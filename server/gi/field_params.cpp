@@ -56,7 +56,7 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
                         "relocation clearance, fraction of spacing"),
           param::number("backface_threshold", &P::backface_threshold, 1e-6f, 1.0f,
                         "back-face fraction meaning inside"),
-          // Its limit depends on rays_per_probe and fixed_rays: validate() states it.
+          // Its limit depends on rays_per_probe: validate() states it.
           param::number("max_rays_per_update", &P::max_rays_per_update,
                         "probe rays per update, 0: no cap, else >= one probe's rays"),
           param::number("emitter_samples", &P::emitter_samples, 0, 64,
@@ -97,10 +97,9 @@ Status validate(const IrradianceFieldParams& p) {
                             "); set relocation_iterations=0 and classification=false "
                             "to run without fixed rays");
   }
-  const uint64_t rays_per_probe_total = p.rays_per_probe + p.fixed_rays;
-  if (p.max_rays_per_update != 0 && p.max_rays_per_update < rays_per_probe_total) {
+  if (p.max_rays_per_update != 0 && p.max_rays_per_update < p.rays_per_probe) {
     return invalid_argument("max_rays_per_update must be 0 (no cap) or at least one probe's " +
-                            std::to_string(rays_per_probe_total) + " rays (got " +
+                            std::to_string(p.rays_per_probe) + " rays (got " +
                             std::to_string(p.max_rays_per_update) + ")");
   }
   const AtlasLayout layout = atlas_layout(p);

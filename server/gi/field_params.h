@@ -100,9 +100,10 @@ struct IrradianceFieldParams {
   // A probe with more back-face hits than this fraction of its fixed rays is inside
   // geometry, in (0, 1]. 0.25: the 2021 paper's threshold.
   float backface_threshold = 0.25f;
-  // Probe rays (blended + fixed) one update may trace; 0: no cap. When the active probes need
-  // more, each update traces a round-robin window of them. Must be 0 or at least one probe's
-  // rays. Shadow rays are not counted.
+  // Probe rays one update may trace (rays_per_probe per probe: updates do not trace the fixed
+  // rays, probe management does); 0: no cap. When the active probes need more, each update
+  // traces a round-robin window of them. Must be 0 or at least rays_per_probe. Shadow rays are
+  // not counted.
   uint64_t max_rays_per_update = 0;
 
   // --- Emitters ---------------------------------------------------------------------------------

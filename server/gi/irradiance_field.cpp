@@ -21,6 +21,11 @@ vk::Pass with_access(vk::Pass pass, std::vector<vk::ResourceRef> reads,
   return pass;
 }
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
+// field_blend: one workgroup per probe. 64 lanes: the default maps' 64 + 256 texels in five
+// full rounds.
+constexpr glm::uvec3 kProbeWorkgroup{64, 1, 1};
+// Probes per row of workgroups (inside every device's 65535-workgroup limit per dimension).
+constexpr uint32_t kProbeWorkgroupRow = 4096;
 
 // SplitMix64: a counter-based generator, so update n's rotation depends only on (seed, n).
 uint64_t splitmix64(uint64_t x) {
@@ -90,7 +95,8 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   desc.update = {{gpu::kFieldUpdateBindingRays},
                  {gpu::kFieldUpdateBindingIrradianceOut, storage},
                  {gpu::kFieldUpdateBindingDistanceOut, storage},
-                 {gpu::kFieldUpdateBindingProbeList}};
+                 {gpu::kFieldUpdateBindingProbeList},
+                 {gpu::kFieldUpdateBindingSurfels}};
   desc.query = {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}};
   desc.query_kernel = "field_query";
   desc.push_constant_bytes = sizeof(gpu::FieldDispatch);
@@ -100,25 +106,28 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
 
   const std::vector<VkDescriptorSetLayout> update_layouts = sets_.update_layouts();
   const uint32_t push = sizeof(gpu::FieldDispatch);
-  auto kernel = [&](const char* name, bool traces) {
-    return vk::Kernel::create(context_, {name, traces, update_layouts, push, kLinearWorkgroup},
-                              backend);
+  auto kernel = [&](const char* name, bool traces, glm::uvec3 workgroup = kLinearWorkgroup) {
+    return vk::Kernel::create(context_, {name, traces, update_layouts, push, workgroup}, backend);
   };
-  DDGI_ASSIGN_OR_RETURN(trace_, kernel("field_trace", true));
-  DDGI_ASSIGN_OR_RETURN(shade_, kernel("field_shade", true));
-  if (shadow_field_) {
+  // The lighting kernels' variants that read the shadow field (bound as set 3).
+  auto with_shadow_field = [&](const char* name) {
     std::vector<VkDescriptorSetLayout> layouts = update_layouts;
     layouts.push_back(shadow_field_->sampling_layout());
-    DDGI_ASSIGN_OR_RETURN(
-        shade_with_shadow_field_,
-        vk::Kernel::create(context_,
-                           {"field_shade_shadow_field", true, layouts, push, kLinearWorkgroup},
-                           backend));
-  }
+    return vk::Kernel::create(context_, {name, true, layouts, push, kLinearWorkgroup}, backend);
+  };
+  DDGI_ASSIGN_OR_RETURN(trace_, kernel("field_trace", true));
+  DDGI_ASSIGN_OR_RETURN(blend_, kernel("field_blend", false, kProbeWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(manage_, kernel("field_probes", false));
+  DDGI_ASSIGN_OR_RETURN(raw_trace_, kernel("field_raw_trace", true));
+  DDGI_ASSIGN_OR_RETURN(trace_surfels_, kernel("field_trace_surfels", true));
+  DDGI_ASSIGN_OR_RETURN(shade_, kernel("field_shade", true));
   DDGI_ASSIGN_OR_RETURN(blend_irradiance_, kernel("field_blend_irradiance", false));
   DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
   DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
-  DDGI_ASSIGN_OR_RETURN(manage_, kernel("field_probes", false));
+  if (shadow_field_) {
+    DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_, with_shadow_field("field_trace_shadow_field"));
+    DDGI_ASSIGN_OR_RETURN(shade_with_shadow_field_, with_shadow_field("field_shade_shadow_field"));
+  }
   return ok_status();
 }
 
@@ -130,6 +139,7 @@ Status IrradianceField::create_resources() {
   constants_.reset();
   probes_.reset();
   rays_.reset();
+  surfels_.reset();
   probe_list_.reset();
   irradiance_.reset();
   distance_.reset();
@@ -178,7 +188,26 @@ Status IrradianceField::create_resources() {
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
       .buffer(gpu::kFieldUpdateBindingProbeList, probe_list_)
       .apply(context_.device());
+  if (update_path_ == FieldUpdatePath::kSplit) DDGI_TRY(create_surfels());
   return reset();
+}
+
+Status IrradianceField::create_surfels() {
+  const uint64_t rays = probe_count(params_) * (params_.rays_per_probe + params_.fixed_rays);
+  DDGI_ASSIGN_OR_RETURN(surfels_,
+                        vk::Buffer::create(context_, rays * sizeof(gpu::ProbeSurfel),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           vk::MemoryUsage::kDeviceLocal, "probe surfels"));
+  vk::DescriptorWriter(sets_.update_set())
+      .buffer(gpu::kFieldUpdateBindingSurfels, surfels_)
+      .apply(context_.device());
+  return ok_status();
+}
+
+Status IrradianceField::set_update_path(FieldUpdatePath path) {
+  if (path == FieldUpdatePath::kSplit && !surfels_) DDGI_TRY(create_surfels());
+  update_path_ = path;
+  return ok_status();
 }
 
 Status IrradianceField::reset() {
@@ -224,7 +253,7 @@ vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel
                                 work.list_start,
                                 std::max(work.list_size, 1u),
                                 work.per_probe,
-                                0,
+                                work.first_ray,
                                 work.mode,
                                 0};
   vk::Pass pass;
@@ -235,6 +264,21 @@ vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel
   if (shadow_set) pass.sets.push_back(shadow_set);
   pass.push_constants = vk::Pass::push(push);
   pass.size = d.size;
+  return pass;
+}
+
+vk::Pass IrradianceField::probe_workgroup_pass(const char* name, const vk::Kernel& kernel,
+                                               const LinearWork& work) const {
+  const uint32_t row = std::min(work.probes, kProbeWorkgroupRow);
+  const gpu::FieldDispatch push{
+      work.probes, row, work.list_start, std::max(work.list_size, 1u), 1, 0, 0, 0};
+  vk::Pass pass;
+  pass.name = name;
+  pass.group = vk::PassGroup::kIrradianceField;
+  pass.kernel = &kernel;
+  pass.sets = {scene_.descriptor_set(), sets_.update_set(), sets_.sampling_set()};
+  pass.push_constants = vk::Pass::push(push);
+  pass.size = {row * kProbeWorkgroup.x, (work.probes + row - 1) / std::max(row, 1u), 1};
   return pass;
 }
 
@@ -250,7 +294,7 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
       vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_, c)};
   auto fixed_rays_then = [&](uint32_t mode) {
     passes.push_back(with_access(linear_pass("field trace", trace_, {0, n, n, params_.fixed_rays}),
-                                 {&probes_, &probe_list_}, {&rays_}));
+                                 {&probes_, &probe_list_, &irradiance_, &distance_}, {&rays_}));
     passes.push_back(with_access(linear_pass("probe management", manage_, {0, n, n, 1, mode}),
                                  {&rays_, &probe_list_}, {&probes_}));
   };
@@ -408,40 +452,63 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
     (void)write_probe_list(scheduler_.active());
     probe_list_is_active_ = true;
   }
-  const uint32_t total_rays = params_.rays_per_probe + params_.fixed_rays;
   const uint32_t budget_probes =
       params_.max_rays_per_update == 0
           ? 0
-          : static_cast<uint32_t>(std::max<uint64_t>(1, params_.max_rays_per_update / total_rays));
+          : static_cast<uint32_t>(
+                std::max<uint64_t>(1, params_.max_rays_per_update / params_.rays_per_probe));
   const ProbeScheduler::Window window = scheduler_.next_window(budget_probes);
-  last_update_probe_rays_ = uint64_t(window.count) * total_rays;
+  last_update_probe_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_traced_lights_ = traced_lights(direct_mode);
+  last_update_rays_ = {window.start,        probe_list_size_, window.count,
+                       params_.rays_per_probe, 0,             params_.fixed_rays};
 
-  const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
-  auto work = [&](uint32_t per_probe) -> LinearWork {
-    return {window.start, probe_list_size_, window.count, per_probe};
-  };
-  const bool reads_shadow_field = shadow_field_ && uses_shadow_field(direct_mode);
-  const vk::Kernel& shade = reads_shadow_field ? shade_with_shadow_field_ : shade_;
-  const VkDescriptorSet shadow_set =
-      reads_shadow_field ? shadow_field_->sampling_set() : VK_NULL_HANDLE;
-  std::vector<vk::Pass> passes = {
-      vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_,
-                      constants(direct_mode)),
-      with_access(linear_pass("field trace", trace_, work(total_rays)), {&probes_, &probe_list_},
-                  {&rays_}),
-      with_access(linear_pass("field shade", shade, work(params_.rays_per_probe), shadow_set),
-                  {&rays_, &irradiance_, &distance_}, {&rays_}),
-      with_access(linear_pass("blend irradiance", blend_irradiance_, work(ti * ti)),
-                  {&rays_, &probes_}, {&irradiance_}),
-      with_access(linear_pass("blend distance", blend_distance_, work(td * td)), {&rays_, &probes_},
-                  {&distance_, &probes_}),
-      with_access(linear_pass("borders", borders_, work(4 * (std::max(ti, td) + 1))), {},
-                  {&irradiance_, &distance_}),
-  };
+  std::vector<vk::Pass> passes = {vk::upload_pass(
+      "field constants", vk::PassGroup::kIrradianceField, constants_, constants(direct_mode))};
+  add_lighting_passes(passes, last_update_rays_, direct_mode);
   ++update_index_;
   return passes;
+}
+
+void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
+                                          DirectMode direct_mode) const {
+  const bool reads_shadow_field = shadow_field_ && uses_shadow_field(direct_mode);
+  const VkDescriptorSet shadow_set =
+      reads_shadow_field ? shadow_field_->sampling_set() : VK_NULL_HANDLE;
+  auto per_probe = [&](uint32_t items) {
+    LinearWork work = rays;
+    work.per_probe = items;
+    return work;
+  };
+  if (update_path_ == FieldUpdatePath::kFused) {
+    const vk::Kernel& trace = reads_shadow_field ? trace_with_shadow_field_ : trace_;
+    passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
+                                 {&probes_, &probe_list_, &irradiance_, &distance_}, {&rays_}));
+    passes.push_back(with_access(probe_workgroup_pass("field blend", blend_, rays),
+                                 {&rays_, &probes_}, {&irradiance_, &distance_, &probes_}));
+    return;
+  }
+  const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;
+  const vk::Kernel& shade = reads_shadow_field ? shade_with_shadow_field_ : shade_;
+  passes.push_back(with_access(linear_pass("field trace", trace_surfels_, rays),
+                               {&probes_, &probe_list_}, {&surfels_}));
+  passes.push_back(with_access(linear_pass("field shade", shade, rays, shadow_set),
+                               {&surfels_, &irradiance_, &distance_}, {&rays_}));
+  passes.push_back(with_access(linear_pass("blend irradiance", blend_irradiance_, per_probe(ti * ti)),
+                               {&rays_, &probes_}, {&irradiance_}));
+  passes.push_back(with_access(linear_pass("blend distance", blend_distance_, per_probe(td * td)),
+                               {&rays_, &probes_}, {&distance_, &probes_}));
+  passes.push_back(with_access(
+      linear_pass("borders", borders_, per_probe(4 * (std::max(ti, td) + 1))), {},
+      {&irradiance_, &distance_}));
+}
+
+std::vector<vk::Pass> IrradianceField::raw_trace_passes() const {
+  vk::Pass pass = with_access(linear_pass("field raw trace", raw_trace_, last_update_rays_),
+                              {&probes_, &probe_list_}, {&rays_});
+  pass.group = vk::PassGroup::kBaseline;
+  return {pass};
 }
 
 Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, DirectMode direct_mode) {

@@ -1,6 +1,8 @@
 // One DDGI irradiance field: its probe grid, the irradiance and distance atlases it owns
 // (persistent history), the probe-ray buffer, and the kernels of one update:
-//   trace -> shade -> blend irradiance -> blend distance -> borders.
+//   fused (the default): trace + shade -> blend both maps and their borders, per probe;
+//   split (the reference the fused update is tested against, and the benchmark's comparison):
+//   trace -> shade -> blend irradiance -> blend distance -> borders, per ray and per texel.
 // Frame kernels sample it through descriptor set 2 (shaders/shared/field_data.h).
 #pragma once
 
@@ -27,6 +29,12 @@ struct IrradianceQuery {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   glm::vec3 to_viewer{0.0f, 1.0f, 0.0f};  // the self-shadow bias leans this way
+};
+
+// How an update is split into passes; both give the same atlases (tests/gpu/field_update_test).
+enum class FieldUpdatePath {
+  kFused,  // field_trace (trace + shade), field_blend (per probe, borders included)
+  kSplit,  // field_trace_surfels, field_shade, field_blend_irradiance/_distance, field_borders
 };
 
 class IrradianceField {
@@ -58,6 +66,13 @@ class IrradianceField {
   // max_rays_per_update caps it), lit in probe_mode(frame_mode). Building the list advances the
   // field (probe window, update index): record every list built, once, in order.
   std::vector<vk::Pass> update_passes(DirectMode frame_mode);
+  // Chooses the passes of later updates (the split path allocates its surfel buffer here).
+  Status set_update_path(FieldUpdatePath path);
+  FieldUpdatePath update_path() const { return update_path_; }
+  // The benchmark's baseline: the last update's blended rays traced again by a kernel that only
+  // records hit distances (shaders/gi/field_raw_trace.glsl). It overwrites the ray buffer,
+  // which the next update writes before reading.
+  std::vector<vk::Pass> raw_trace_passes() const;
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
   // Converges a new field quickly: three quarters of `count` updates at hysteresis <= 0.5, so
@@ -85,7 +100,8 @@ class IrradianceField {
   const ProbeScheduler& scheduler() const { return scheduler_; }
   // Every probe's offset and flags (state in bits 8..15), for dumps and tests.
   Result<std::vector<gpu::ProbeState>> read_probe_states();
-  // Probe rays (blended + fixed) the last recorded update traced.
+  // Probe rays the last recorded update traced (its blended rays: the fixed rays are traced
+  // only by probe management).
   uint64_t last_update_probe_rays() const { return last_update_probe_rays_; }
   // Rays traced by the last update: probe rays plus one shadow ray per traced light per shaded
   // ray.
@@ -96,6 +112,7 @@ class IrradianceField {
       : context_(context), scene_(scene), shadow_field_(shadow_field) {}
   Status create_layouts_and_kernels(vk::TraceBackend backend);
   Status create_resources();
+  Status create_surfels();
   gpu::FieldConstants constants(DirectMode direct_mode) const;
   // Lights whose visibility probe-ray hits trace in `direct_mode` (the rest read the shadow
   // field or are unshadowed).
@@ -112,11 +129,18 @@ class IrradianceField {
     uint32_t list_size = 0;
     uint32_t probes = 0;
     uint32_t per_probe = 0;
-    uint32_t mode = 0;  // kProbeMode* of the probe-management kernel
+    uint32_t mode = 0;       // kProbeMode* of the probe-management kernel
+    uint32_t first_ray = 0;  // of the tracing kernels
   };
-  // `shadow_set`: bound as set 3 when not null (the shade kernel's shadow-field variant).
+  // `shadow_set`: bound as set 3 when not null (the lighting kernels' shadow-field variants).
   vk::Pass linear_pass(const char* name, const vk::Kernel& kernel, const LinearWork& work,
                        VkDescriptorSet shadow_set = VK_NULL_HANDLE) const;
+  // One workgroup per probe of `work` (field_blend).
+  vk::Pass probe_workgroup_pass(const char* name, const vk::Kernel& kernel,
+                                const LinearWork& work) const;
+  // The lighting passes of one update over `rays` (fused or split path).
+  void add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
+                           DirectMode direct_mode) const;
   Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels);
 
   vk::Context& context_;
@@ -129,22 +153,29 @@ class IrradianceField {
   uint64_t gpu_bytes_ = 0;
 
   FieldSets sets_;  // sampling (set 2 of frames), update and query sets; query kernel; timer
-  vk::Kernel trace_;
+  vk::Kernel trace_;                    // fused: traces and lights (also the fixed rays)
+  vk::Kernel trace_with_shadow_field_;  // only with a shadow field
+  vk::Kernel blend_;                    // fused: both maps and their borders, per probe
+  vk::Kernel manage_;
+  vk::Kernel raw_trace_;
+  vk::Kernel trace_surfels_;  // the split path's kernels
   vk::Kernel shade_;
   vk::Kernel shade_with_shadow_field_;  // only with a shadow field
   vk::Kernel blend_irradiance_;
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
-  vk::Kernel manage_;
+  FieldUpdatePath update_path_ = FieldUpdatePath::kFused;
 
   vk::Buffer constants_;
   vk::Buffer probes_;
   vk::Buffer rays_;
+  vk::Buffer surfels_;     // the split path only
   vk::Buffer probe_list_;  // host-visible: the probes the next dispatches work on
   uint32_t probe_list_size_ = 0;
   bool probe_list_is_active_ = false;  // else it holds probes being managed
   ProbeScheduler scheduler_;
   uint64_t seen_moves_ = 0;  // GpuScene::move_count() already handled
+  LinearWork last_update_rays_;  // the blended rays of the last update (raw_trace_passes)
   uint64_t last_update_probe_rays_ = 0;
   uint64_t last_update_shaded_rays_ = 0;
   uint32_t last_update_traced_lights_ = 0;

@@ -72,6 +72,11 @@ Status Renderer::create_kernels() {
   DDGI_ASSIGN_OR_RETURN(
       primary_, vk::Kernel::create(
                     context_, {"primary", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
+  DDGI_ASSIGN_OR_RETURN(primary_raw_trace_,
+                        vk::Kernel::create(context_,
+                                           {"primary_raw_trace", true, layouts,
+                                            sizeof(gpu::PrimaryConstants)},
+                                           backend_));
   DDGI_ASSIGN_OR_RETURN(
       direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
                                   backend_));
@@ -224,6 +229,19 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
                         {&target.images().ldr}));
   passes.push_back(target.images().readback_pass(settings.read_radiance));
   return passes;
+}
+
+std::vector<vk::Pass> Renderer::raw_primary_passes(const FrameSettings& settings,
+                                                   const FrameTarget& target) const {
+  vk::Pass pass;
+  pass.name = "primary raw trace";
+  pass.group = vk::PassGroup::kBaseline;
+  pass.kernel = &primary_raw_trace_;
+  pass.sets = {scene_.descriptor_set(), target.frame_set()};
+  pass.push_constants = vk::Pass::push(frame_constants(settings, field_).primary);
+  pass.size = {settings.width, settings.height, 1};
+  pass.writes = {&target.gbuffer()};
+  return {pass};
 }
 
 Result<FrameResult> Renderer::render(const FrameSettings& settings,

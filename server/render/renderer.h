@@ -73,6 +73,10 @@ class Renderer {
   // The passes of one frame into `target`, in order, each with its declared inputs and outputs.
   std::vector<vk::Pass> frame_passes(const FrameSettings& settings,
                                      const FrameTarget& target) const;
+  // ddgi-bench's baseline for primary visibility: the frame's camera rays traced by a kernel
+  // that only records hit distances (into the G-buffer, which the frame's primary pass writes).
+  std::vector<vk::Pass> raw_primary_passes(const FrameSettings& settings,
+                                           const FrameTarget& target) const;
   vk::TraceBackend backend() const { return backend_; }
 
  private:
@@ -89,6 +93,7 @@ class Renderer {
   vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
   vk::DescriptorLayout frame_layout_;
   vk::Kernel primary_;
+  vk::Kernel primary_raw_trace_;
   vk::Kernel direct_;
   vk::Kernel direct_shadow_field_;  // the direct pass with the shadow field bound as set 2
   vk::Kernel indirect_;

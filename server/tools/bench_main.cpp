@@ -1,6 +1,9 @@
 // ddgi-bench: GPU timing of the field update and frame passes over a matrix of scenes, probe
-// grids and rays per probe. Prints one markdown table row per configuration (medians over
-// --frames frames, each frame = one field update + the frame passes).
+// grids, rays per probe and update paths. Prints one markdown table row per configuration
+// (medians over --frames frames, each frame = one field update + the frame passes), with the
+// raw-ray baselines traced in the same submissions: the update's blended rays and the frame's
+// camera rays traced by kernels that only record hit distances. `update / raw` and
+// `primary / raw` are the figures of merit: what lighting and blending cost over the rays.
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -14,6 +17,7 @@
 #include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
+#include "render/frame_target.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tools/tool_support.h"
@@ -34,6 +38,8 @@ every combination of --grids and --rays. Prints a markdown table (median millise
                         scene bounds with exactly these counts), separated by ';' [auto]
   --probes N            target probe count of 'auto' grids              [512]
   --rays LIST           rays per probe, comma-separated                 [64,128,256]
+  --paths LIST          field update paths, comma-separated: fused (the service's) and/or
+                        split (trace, shade, per-texel blends, borders)  [fused]
   --backend B           auto | query | pipeline                        [auto]
   --field NAME=VALUE    any other field parameter (repeatable)
   --device NAME         Vulkan device name filter
@@ -76,8 +82,13 @@ struct BenchJob {
   uint32_t probes = 512;
   std::vector<std::string> grids;
   std::vector<uint32_t> ray_counts;
+  std::vector<FieldUpdatePath> paths;
   std::vector<std::string> field_assignments;
 };
+
+const char* path_name(FieldUpdatePath path) {
+  return path == FieldUpdatePath::kFused ? "fused" : "split";
+}
 
 Result<BenchJob> parse_job(const Flags& flags) {
   BenchJob job;
@@ -96,13 +107,51 @@ Result<BenchJob> parse_job(const Flags& flags) {
     DDGI_ASSIGN_OR_RETURN(const int64_t n, parse_int(r, "--rays"));
     job.ray_counts.push_back(static_cast<uint32_t>(n));
   }
+  DDGI_ASSIGN_OR_RETURN(const std::string paths_text, flags.get_string("paths", "fused"));
+  for (const std::string& name : split(paths_text, ',')) {
+    if (name != "fused" && name != "split") {
+      return invalid_argument("--paths: '" + name + "' is not fused or split");
+    }
+    job.paths.push_back(name == "fused" ? FieldUpdatePath::kFused : FieldUpdatePath::kSplit);
+  }
+  if (job.paths.empty()) return invalid_argument("--paths: no update path given");
   job.field_assignments = flags.get_all("field");
   return job;
 }
 
-// One table row: a GI stack for the configuration, warmed up, then `frames` timed frames.
+// The row of one configuration (columns: see run()).
+void print_row(const tools::PassTable& table, const GiStack& gi, const std::string& scene_path,
+               FieldUpdatePath path) {
+  const double field_ms = table.group_median(vk::PassGroup::kIrradianceField);
+  const double raw_ms = table.pass_median("field raw trace");
+  const double primary_ms = table.pass_median("primary");
+  const double primary_raw_ms = table.pass_median("primary raw trace");
+  const IrradianceField& field = *gi.field();
+  const IrradianceFieldParams& p = field.params();
+  const std::string name = scene_path.substr(scene_path.find_last_of('/') + 1);
+  const ProbeStateCounts counts = field.probe_counts();
+  const double blend_ms = table.pass_median("field blend") + table.pass_median("blend irradiance") +
+                          table.pass_median("blend distance") + table.pass_median("borders");
+  std::printf(
+      "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %s | %.1f | %.3f | %.3f | %.3f | %.3f | "
+      "%.3f | %.2f | %.0f | %.3f | %.3f | %.2f | %.3f | %.3f | %.3f | %.3f |\n",
+      name.c_str(), gi.scene().triangle_count(), p.counts.x, p.counts.y, p.counts.z,
+      static_cast<unsigned long long>(counts.active()),
+      static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
+      p.rays_per_probe, path_name(path), double(field.gpu_bytes()) / (1 << 20),
+      table.pass_median("field trace"), table.pass_median("field shade"), blend_ms, field_ms,
+      raw_ms, field_ms / raw_ms, double(field.rays_per_update()) / (field_ms * 1e3), primary_ms,
+      primary_raw_ms, primary_ms / primary_raw_ms, table.pass_median("direct"),
+      table.pass_median("indirect"), table.pass_median("tonemap"),
+      table.others_median(vk::PassGroup::kIrradianceField));
+  std::fflush(stdout);
+}
+
+// One table row: a GI stack for the configuration, warmed up, then `frames` timed frames, each
+// with both raw-ray baselines recorded after the update in the same submission.
 Status bench_row(vk::Context& context, const BenchJob& job, const std::string& scene_path,
-                 const Scene& scene, const std::string& grid, uint32_t rays) {
+                 const Scene& scene, const std::string& grid, uint32_t rays,
+                 FieldUpdatePath path) {
   DDGI_ASSIGN_OR_RETURN(
       GiStackOptions options,
       fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
@@ -110,40 +159,33 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
   options.field.rays_per_probe = rays;
   DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
   DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
+  IrradianceField& field = *gi->field();
+  DDGI_TRY(field.set_update_path(path));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto target,
+                        FrameTarget::create(context, job.settings.width, job.settings.height));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   tools::PassTable table;
   for (int64_t f = 0; f < job.frames; ++f) {
-    DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(job.settings.direct_mode, {}));
-    DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, update));
+    DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> before,
+                          gi->frame_update(job.settings.direct_mode, {}));
+    for (vk::Pass& p : field.raw_trace_passes()) before.push_back(std::move(p));
+    for (vk::Pass& p : renderer->raw_primary_passes(job.settings, *target)) {
+      before.push_back(std::move(p));
+    }
+    DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, *target, before));
     table.add(frame.pass_times);
   }
-  const double field_ms = table.group_median(vk::PassGroup::kIrradianceField);
-  const IrradianceField& field = *gi->field();
-  const IrradianceFieldParams& p = field.params();
-  const std::string name = scene_path.substr(scene_path.find_last_of('/') + 1);
-  const ProbeStateCounts counts = field.probe_counts();
-  std::printf(
-      "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %.1f | %.3f | %.3f | %.3f | %.3f | "
-      "%.3f | %.3f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f |\n",
-      name.c_str(), gi->scene().triangle_count(), p.counts.x, p.counts.y, p.counts.z,
-      static_cast<unsigned long long>(counts.active()),
-      static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
-      p.rays_per_probe, double(field.gpu_bytes()) / (1 << 20), table.pass_median("field trace"),
-      table.pass_median("field shade"), table.pass_median("blend irradiance"),
-      table.pass_median("blend distance"), table.pass_median("borders"), field_ms,
-      double(field.rays_per_update()) / (field_ms * 1e3), table.pass_median("primary"),
-      table.pass_median("direct"), table.pass_median("indirect"), table.pass_median("tonemap"),
-      table.others_median(vk::PassGroup::kIrradianceField));
-  std::fflush(stdout);
+  print_row(table, *gi, scene_path, path);
   return ok_status();
 }
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
                                                   {"width", "height", "frames", "warmup", "grids",
-                                                   "probes", "rays", "backend", "field", "device"},
+                                                   "probes", "rays", "paths", "backend", "field",
+                                                   "device"},
                                                   {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
@@ -157,16 +199,18 @@ Status run(int argc, char** argv) {
               vk::backend_name(context->default_backend()), job.settings.width, job.settings.height,
               static_cast<long long>(job.frames), static_cast<long long>(job.warmup));
   std::printf(
-      "| scene | triangles | probes | traced / sleeping / off | rays/probe | field MiB | trace | "
-      "shade | blend irr. | blend dist. | borders | field total | Mrays/s | primary | direct | "
-      "indirect | tonemap | frame total |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| scene | triangles | probes | traced / sleeping / off | rays/probe | path | field MiB | "
+      "trace | shade | blend | field total | raw trace | update / raw | Mrays/s | primary | "
+      "primary raw | primary / raw | direct | indirect | tonemap | frame total |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     job.settings.camera = default_camera(scene);
     for (const std::string& grid : job.grids) {
       for (uint32_t rays : job.ray_counts) {
-        DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays));
+        for (FieldUpdatePath path : job.paths) {
+          DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays, path));
+        }
       }
     }
   }

@@ -83,7 +83,7 @@ double PassTable::others_median(vk::PassGroup group) const {
   for (const auto& frame : frames_) {
     double sum = 0.0;
     for (const vk::PassTime& t : frame) {
-      if (t.group != group) sum += t.milliseconds;
+      if (t.group != group && t.group != vk::PassGroup::kBaseline) sum += t.milliseconds;
     }
     ms.push_back(sum);
   }

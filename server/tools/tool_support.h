@@ -44,7 +44,7 @@ class PassTable {
   double pass_median(const std::string& name) const;
   // The median over frames of each frame's summed time of `group`.
   double group_median(vk::PassGroup group) const;
-  // The same for every group but `group` (e.g. all frame-side passes).
+  // The same for every group but `group` and the baselines (e.g. all frame-side passes).
   double others_median(vk::PassGroup group) const;
 
  private:

@@ -19,6 +19,7 @@ enum class PassGroup : uint8_t {
   kIrradianceField,  // irradiance-field update
   kFrame,            // the frame's own passes (primary, direct, indirect, views, tone mapping)
   kReadback,         // copies of results to host-visible memory
+  kBaseline,         // ddgi-bench's raw-ray baselines: part of no update and no frame
 };
 
 struct PassTime {

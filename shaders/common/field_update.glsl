@@ -12,6 +12,16 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingProbeList, scalar) re
   uint probe_list[];
 };
 
+// --- ProbeRay::distance (shared/field_data.h) ---------------------------------------------
+float encode_ray_distance(bool hit, bool front_face, float t) {
+  if (!hit) return uintBitsToFloat(0x7f800000u);  // +infinity
+  return front_face ? t : uintBitsToFloat(floatBitsToUint(t) | 0x80000000u);
+}
+bool ray_missed(float d) { return isinf(d); }
+bool ray_hit_back_face(float d) { return (floatBitsToUint(d) & 0x80000000u) != 0u; }
+// Hit distance; max_ray_distance on a miss.
+float ray_distance(float d) { return min(abs(d), field.max_ray_distance); }
+
 // False past the end of the dispatch.
 bool field_item(out uint probe, out uint local) {
   const uint id = linear_invocation(pc.row_width);

@@ -46,6 +46,7 @@ struct Hit {
   uint geometry;   // geometry index inside the instance's BLAS
   uint primitive;  // triangle index inside the geometry
   vec2 barycentrics;
+  vec3 transmittance;  // of the thin glass crossed before the hit (before tmax on a miss)
 };
 
 Hit miss_hit() {
@@ -55,6 +56,7 @@ Hit miss_hit() {
   h.geometry = 0u;
   h.primitive = 0u;
   h.barycentrics = vec2(0.0);
+  h.transmittance = vec3(1.0);
   return h;
 }
 
@@ -89,16 +91,6 @@ float material_alpha(GpuGeometry geo, uint primitive, vec2 bary) {
 }
 
 // Candidate handling shared by ray queries and any-hit shaders.
-// Closest-hit rays: does this candidate count as a surface?
-bool candidate_is_surface(uint instance, uint geometry, uint primitive, vec2 bary) {
-  const GpuGeometry geo = geometry_of(instance, geometry);
-  if ((geo.flags & kGeometryTransmissive) != 0u) return false;
-  if ((geo.flags & kGeometryAlphaMask) != 0u) {
-    return material_alpha(geo, primitive, bary) >= scene_materials[geo.material].alpha_cutoff;
-  }
-  return true;
-}
-
 // Shadow rays: the fraction of light this candidate lets through (0: it blocks).
 vec3 candidate_transmittance(uint instance, uint geometry, uint primitive, vec2 bary) {
   const GpuGeometry geo = geometry_of(instance, geometry);
@@ -115,6 +107,22 @@ vec3 candidate_transmittance(uint instance, uint geometry, uint primitive, vec2 
     return material_alpha(geo, primitive, bary) >= m.alpha_cutoff ? vec3(0.0) : vec3(1.0);
   }
   return vec3(0.0);
+}
+
+// Closest-hit rays: whether this candidate is a surface. When it is not (thin glass, a cut-out
+// texel), `passed` is the light it lets through: the glass tint, or 1.
+bool candidate_is_surface(uint instance, uint geometry, uint primitive, vec2 bary,
+                          out vec3 passed) {
+  passed = vec3(1.0);
+  const GpuGeometry geo = geometry_of(instance, geometry);
+  if ((geo.flags & kGeometryTransmissive) != 0u) {
+    passed = candidate_transmittance(instance, geometry, primitive, bary);
+    return false;
+  }
+  if ((geo.flags & kGeometryAlphaMask) != 0u) {
+    return material_alpha(geo, primitive, bary) >= scene_materials[geo.material].alpha_cutoff;
+  }
+  return true;
 }
 
 struct Surface {

@@ -23,31 +23,38 @@
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
 #define DDGI_INVOCATION_ID gl_GlobalInvocationID
 
+vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax);
+Hit with_glass(Hit hit, GlassLayers glass, vec3 origin, vec3 direction, float tmin, float tmax);
+
 Hit trace_closest(vec3 origin, vec3 direction, float tmin, float tmax) {
+  GlassLayers glass;
+  glass.count = 0u;
   rayQueryEXT query;
   rayQueryInitializeEXT(query, scene_tlas, gl_RayFlagsNoneEXT, 0xFF, origin, tmin, direction,
                         tmax);
   while (rayQueryProceedEXT(query)) {
     if (rayQueryGetIntersectionTypeEXT(query, false) ==
         gl_RayQueryCandidateIntersectionTriangleEXT) {
+      vec3 passed;
       if (candidate_is_surface(rayQueryGetIntersectionInstanceCustomIndexEXT(query, false),
                                rayQueryGetIntersectionGeometryIndexEXT(query, false),
                                rayQueryGetIntersectionPrimitiveIndexEXT(query, false),
-                               rayQueryGetIntersectionBarycentricsEXT(query, false))) {
+                               rayQueryGetIntersectionBarycentricsEXT(query, false), passed)) {
         rayQueryConfirmIntersectionEXT(query);
+      } else if (any(notEqual(passed, vec3(1.0)))) {
+        add_glass_layer(glass, rayQueryGetIntersectionTEXT(query, false), passed);
       }
     }
   }
-  if (rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT) {
-    return miss_hit();
+  Hit hit = miss_hit();
+  if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionNoneEXT) {
+    hit.t = rayQueryGetIntersectionTEXT(query, true);
+    hit.instance = rayQueryGetIntersectionInstanceCustomIndexEXT(query, true);
+    hit.geometry = rayQueryGetIntersectionGeometryIndexEXT(query, true);
+    hit.primitive = rayQueryGetIntersectionPrimitiveIndexEXT(query, true);
+    hit.barycentrics = rayQueryGetIntersectionBarycentricsEXT(query, true);
   }
-  Hit hit;
-  hit.t = rayQueryGetIntersectionTEXT(query, true);
-  hit.instance = rayQueryGetIntersectionInstanceCustomIndexEXT(query, true);
-  hit.geometry = rayQueryGetIntersectionGeometryIndexEXT(query, true);
-  hit.primitive = rayQueryGetIntersectionPrimitiveIndexEXT(query, true);
-  hit.barycentrics = rayQueryGetIntersectionBarycentricsEXT(query, true);
-  return hit;
+  return with_glass(hit, glass, origin, direction, tmin, tmax);
 }
 
 vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax) {
@@ -82,19 +89,24 @@ vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax) {
 layout(location = kPayloadClosest) rayPayloadEXT ClosestPayload closest_payload;
 layout(location = kPayloadShadow) rayPayloadEXT ShadowPayload shadow_payload;
 
+vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax);
+Hit with_glass(Hit hit, GlassLayers glass, vec3 origin, vec3 direction, float tmin, float tmax);
+
 Hit trace_closest(vec3 origin, vec3 direction, float tmin, float tmax) {
   closest_payload.t = -1.0;
+  closest_payload.glass.count = 0u;
   // SBT offset = ray type, stride 0: every geometry uses the same hit group.
   traceRayEXT(scene_tlas, gl_RayFlagsNoneEXT, 0xFF, kRayTypeClosest, 0, kRayTypeClosest, origin,
               tmin, direction, tmax, kPayloadClosest);
-  if (closest_payload.t < 0.0) return miss_hit();
-  Hit hit;
-  hit.t = closest_payload.t;
-  hit.instance = closest_payload.instance;
-  hit.geometry = closest_payload.geometry;
-  hit.primitive = closest_payload.primitive;
-  hit.barycentrics = closest_payload.barycentrics;
-  return hit;
+  Hit hit = miss_hit();
+  if (closest_payload.t >= 0.0) {
+    hit.t = closest_payload.t;
+    hit.instance = closest_payload.instance;
+    hit.geometry = closest_payload.geometry;
+    hit.primitive = closest_payload.primitive;
+    hit.barycentrics = closest_payload.barycentrics;
+  }
+  return with_glass(hit, closest_payload.glass, origin, direction, tmin, tmax);
 }
 
 vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax) {
@@ -106,11 +118,15 @@ vec3 trace_transmittance(vec3 origin, vec3 direction, float tmin, float tmax) {
 
 #endif
 
-// Transmittance through thin glass between `origin` and a closest hit at distance `t`.
-// Only scenes with glass pay for the extra ray.
-vec3 glass_transmittance(vec3 origin, vec3 direction, float tmin, float t) {
-  if ((scene.flags & kSceneHasTransmission) == 0u) return vec3(1.0);
-  return trace_transmittance(origin, direction, tmin, t);
+// `hit` with the transmittance of the glass in front of it (of all glass before tmax on a miss):
+// from the layers its own traversal saw, or, when more were seen than it keeps, from an exact
+// transmittance ray (rare).
+Hit with_glass(Hit hit, GlassLayers glass, vec3 origin, vec3 direction, float tmin, float tmax) {
+  const float end = hit.t < 0.0 ? tmax : hit.t;
+  if (!glass_before(glass, end, hit.transmittance)) {
+    hit.transmittance = trace_transmittance(origin, direction, tmin, end);
+  }
+  return hit;
 }
 
 #endif

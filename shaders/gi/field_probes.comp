@@ -22,17 +22,18 @@ void main() {
   float closest_back = kFloatMax, closest_front = kFloatMax;
   vec3 back_direction = vec3(0.0), front_direction = vec3(0.0);
   for (uint r = 0u; r < n; ++r) {
-    const ProbeRay ray = rays[first + r];
-    if ((ray.flags & kRayHit) == 0u) continue;
-    if ((ray.flags & kRayFrontFace) != 0u) {
-      if (ray.distance < closest_front) {
-        closest_front = ray.distance;
+    const float encoded = rays[first + r].distance;
+    if (ray_missed(encoded)) continue;
+    const float distance = ray_distance(encoded);
+    if (!ray_hit_back_face(encoded)) {
+      if (distance < closest_front) {
+        closest_front = distance;
         front_direction = probe_ray_direction(r);
       }
     } else {
       ++backfaces;
-      if (ray.distance < closest_back) {
-        closest_back = ray.distance;
+      if (distance < closest_back) {
+        closest_back = distance;
         back_direction = probe_ray_direction(r);
       }
     }

@@ -1,50 +1,48 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Field update, pass 2: the radiance each blended ray carries back to its probe: emission,
-// direct light at the hit, and the previous field's irradiance times albedo (multiple
-// bounces). Back faces carry nothing (2021 paper, sec. 4.1); misses carry the environment.
-#include "gi/shadow_direct.glsl"
-#include "common/field_update.glsl"
-#include "common/emitter_direct.glsl"
-#include "shared/frame_data.h"
+// Split field update, pass 2: lights the surfel each blended ray found (field_trace_surfels)
+// and writes the ray's radiance and distance. The thin glass in front of the hit is found by a
+// second, transmittance-type ray: the split update is kept as the fused one's reference
+// (tests compare their atlases) and as the benchmark's comparison.
+#include "gi/probe_ray_radiance.glsl"
 
-layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) buffer Rays { ProbeRay rays[]; };
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingSurfels, scalar) readonly buffer Surfels {
+  ProbeSurfel surfels[];
+};
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) writeonly buffer Rays {
+  ProbeRay rays[];
+};
 
 void main() {
   uint probe, local;
   if (!field_item(probe, local)) return;
   const uint r = field.fixed_rays + local;
   const uint index = probe * rays_per_probe_total() + r;
-  const ProbeRay ray = rays[index];
+  const ProbeSurfel surfel = surfels[index];
   const vec3 origin = probe_position(probe);
   const vec3 direction = probe_ray_direction(r);
+  const bool hit = (surfel.flags & kRayHit) != 0u;
+  const bool front_face = (surfel.flags & kRayFrontFace) != 0u;
 
   vec3 radiance = vec3(0.0);
-  if ((ray.flags & kRayHit) == 0u) {
+  if (!hit) {
     radiance = environment_radiance(direction);
-  } else if ((ray.flags & kRayFrontFace) != 0u) {
+  } else if (front_face) {
     Surface s;
-    s.position = ray.position;
-    s.normal = unpack_normal(ray.normal_oct);
-    s.geometric_normal = unpack_normal(ray.geometric_normal_oct);
-    s.albedo = ray.albedo;
-    s.emission = ray.emission;
+    s.position = surfel.position;
+    s.normal = unpack_normal(surfel.normal_oct);
+    s.geometric_normal = unpack_normal(surfel.geometric_normal_oct);
+    s.albedo = surfel.albedo;
+    s.emission = surfel.emission;
     s.front_face = true;
-    Rng rng = rng_seed(index, field.update_index, 0x5bd1e995u);
-    // Compiled twice: with DDGI_SHADOW_FIELD_SET the shadow field's modes read it here too;
-    // without, they shade probe-ray hits with traced shadow rays.
-    const vec3 direct = direct_light(s, field.direct_mode, 1u, -direction, false, rng);
-    const vec3 indirect = s.albedo * field.energy_conservation *
-                          sample_irradiance(s.position, s.normal, -direction);
-    if (field.emitter_samples > 0u) {
-      // Emitter light reaches surfaces by sampling (here and per pixel), not through the field:
-      // what probes see of an emitter would count it twice.
-      radiance = direct + emitter_direct(s, field.emitter_samples, rng) + indirect;
-    } else {
-      radiance = s.emission + direct + indirect;
-    }
+    radiance = probe_hit_radiance(s, direction, index);
   }
-  const float t = (ray.flags & kRayHit) != 0u ? ray.distance : field.max_ray_distance;
-  radiance *= glass_transmittance(origin, direction, 0.0, t);
-  rays[index].radiance = sanitize_radiance(radiance);
+  const float t = hit ? surfel.distance : field.max_ray_distance;
+  if ((scene.flags & kSceneHasTransmission) != 0u) {
+    radiance *= trace_transmittance(origin, direction, 0.0, t);
+  }
+  ProbeRay ray;
+  ray.radiance = sanitize_radiance(radiance);
+  ray.distance = encode_ray_distance(hit, front_face, surfel.distance);
+  rays[index] = ray;
 }

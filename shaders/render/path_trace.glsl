@@ -74,7 +74,7 @@ PathRadiance trace_path(vec3 origin, vec3 direction, inout Rng rng) {
 
   for (uint segment = 0u;; ++segment) {
     const Hit hit = trace_closest(origin, direction, tmin, kFloatMax);
-    throughput *= glass_transmittance(origin, direction, tmin, hit.t < 0.0 ? kFloatMax : hit.t);
+    throughput *= hit.transmittance;
     if (hit.t < 0.0) {
       add_emission(r, segment, throughput * environment_radiance(direction));
       break;

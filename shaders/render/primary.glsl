@@ -3,8 +3,7 @@
 // Primary visibility: one ray per pixel through the pixel centre into the G-buffer.
 #include "common/trace.glsl"
 #include "common/gbuffer.glsl"
-
-layout(push_constant, scalar) uniform Push { PrimaryConstants pc; };
+#include "render/primary_ray.glsl"
 layout(set = kFrameSet, binding = kFrameBindingGBuffer, scalar) writeonly buffer GBuffer {
   GBufferTexel gbuffer[];
 };
@@ -12,9 +11,7 @@ layout(set = kFrameSet, binding = kFrameBindingGBuffer, scalar) writeonly buffer
 void main() {
   const uvec2 pixel = DDGI_INVOCATION_ID.xy;
   if (pixel.x >= pc.width || pixel.y >= pc.height) return;
-  const vec2 ndc = (vec2(pixel) + 0.5) / vec2(pc.width, pc.height) * 2.0 - 1.0;
-  const vec3 direction = normalize(pc.camera_forward + ndc.x * pc.camera_right -
-                                   ndc.y * pc.camera_up);
+  const vec3 direction = primary_ray_direction(pixel);
   const Hit hit = trace_closest(pc.camera_position, direction, pc.tmin, pc.tmax);
 
   GBufferTexel texel;
@@ -26,7 +23,7 @@ void main() {
     texel.albedo_flags = uvec2(0u);
   } else {
     const Surface s = surface_at(hit, direction);
-    const vec3 glass = glass_transmittance(pc.camera_position, direction, pc.tmin, hit.t);
+    const vec3 glass = hit.transmittance;
     texel.position = s.position;
     texel.normal_oct = pack_normal(s.normal);
     texel.geometric_normal_oct = pack_normal(s.geometric_normal);

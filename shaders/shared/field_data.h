@@ -25,6 +25,7 @@ DDGI_CONST uint kFieldUpdateBindingRays = 0;           // ProbeRay per traced ra
 DDGI_CONST uint kFieldUpdateBindingIrradianceOut = 1;  // image2D view of the irradiance atlas
 DDGI_CONST uint kFieldUpdateBindingDistanceOut = 2;    // image2D view of the distance atlas
 DDGI_CONST uint kFieldUpdateBindingProbeList = 3;      // uint probe index per list entry
+DDGI_CONST uint kFieldUpdateBindingSurfels = 4;        // ProbeSurfel per ray (split update only)
 
 // Atlas layout: probe p's tile is (p % tiles_per_row, p / tiles_per_row); a tile is the
 // octahedral map plus a one-texel border copied from the opposite edges.
@@ -42,7 +43,7 @@ DDGI_CONST uint kProbeSleeping = 2u;  // no surface within reach: not traced
 DDGI_CONST uint kProbeOff = 3u;       // inside geometry: never traced, never sampled
 DDGI_CONST uint kProbeStateCount = 4u;
 
-// ProbeRay::flags
+// ProbeSurfel::flags
 DDGI_CONST uint kRayHit = 1u;
 DDGI_CONST uint kRayFrontFace = 2u;
 
@@ -51,15 +52,24 @@ struct ProbeState {
   uint flags;
 };
 
-// One traced probe ray: the surfel it found (trace pass), then its radiance (shade pass).
+// What one traced probe ray brought back: all the blends and probe management read.
+// `distance` says what was hit (shaders/common/field.glsl encodes and decodes it):
+//   +t: a front face at distance t;  -t (sign bit set, also for t = 0): a back face;
+//   +infinity: nothing within max_ray_distance.
 struct ProbeRay {
+  vec3 radiance;  // towards the probe (0 from back faces and from fixed rays, which are not lit)
+  float distance;
+};
+
+// The split update only (field_trace_surfels, then field_shade): the surface a ray found,
+// kept between the two passes. The fused update (field_trace) shades where it traces.
+struct ProbeSurfel {
   vec3 position;     // hit point
   float distance;    // hit distance; max_ray_distance on a miss
   vec3 albedo;
   uint normal_oct;   // shading normal on the side the ray sees
   vec3 emission;
   uint flags;        // kRay*
-  vec3 radiance;     // towards the probe; 0 for back faces
   uint geometric_normal_oct;
 };
 
@@ -142,15 +152,18 @@ static_assert(sizeof(ProbeState) == 16);
 static_assert(offsetof(ProbeState, offset) == 0);
 static_assert(offsetof(ProbeState, flags) == 12);
 
-static_assert(sizeof(ProbeRay) == 64);
-static_assert(offsetof(ProbeRay, position) == 0);
+static_assert(sizeof(ProbeRay) == 16);
+static_assert(offsetof(ProbeRay, radiance) == 0);
 static_assert(offsetof(ProbeRay, distance) == 12);
-static_assert(offsetof(ProbeRay, albedo) == 16);
-static_assert(offsetof(ProbeRay, normal_oct) == 28);
-static_assert(offsetof(ProbeRay, emission) == 32);
-static_assert(offsetof(ProbeRay, flags) == 44);
-static_assert(offsetof(ProbeRay, radiance) == 48);
-static_assert(offsetof(ProbeRay, geometric_normal_oct) == 60);
+
+static_assert(sizeof(ProbeSurfel) == 52);
+static_assert(offsetof(ProbeSurfel, position) == 0);
+static_assert(offsetof(ProbeSurfel, distance) == 12);
+static_assert(offsetof(ProbeSurfel, albedo) == 16);
+static_assert(offsetof(ProbeSurfel, normal_oct) == 28);
+static_assert(offsetof(ProbeSurfel, emission) == 32);
+static_assert(offsetof(ProbeSurfel, flags) == 44);
+static_assert(offsetof(ProbeSurfel, geometric_normal_oct) == 48);
 
 static_assert(sizeof(FieldConstants) == 224);
 static_assert(offsetof(FieldConstants, origin) == 0);

@@ -261,7 +261,7 @@ TEST_F(ProbeManagementTest, MovingObjectWakesSleepingProbesBeforeTheyShade) {
   p.counts = {4, 4, 4};
   p.rays_per_probe = 32;
   p.fixed_rays = 32;
-  p.max_rays_per_update = 8 * (p.rays_per_probe + p.fixed_rays);  // 8 probes per update
+  p.max_rays_per_update = 8 * p.rays_per_probe;  // 8 probes per update
   // The box moves to y in [0.5, 1.5], among the sleeping layers. A point on its +x face, facing
   // the lit floor: its cage (layers y = 0.5 and 1.5) is lit only by probes traced since the move.
   const IrradianceQuery side{{0.5001f, 1.0f, 0.0f}, {1, 0, 0}, {1, 0, 0}};
@@ -324,7 +324,7 @@ TEST_F(ProbeManagementTest, BudgetCapsRaysAndReachesEveryActiveProbe) {
   p.counts = {4, 4, 4};
   p.rays_per_probe = 24;
   p.fixed_rays = 8;
-  const uint64_t per_probe = p.rays_per_probe + p.fixed_rays;
+  const uint64_t per_probe = p.rays_per_probe;  // updates do not trace the fixed rays
   p.max_rays_per_update = 10 * per_probe + per_probe / 2;  // 10.5 probes' worth: 10 per update
   auto f = field(*gpu, p);
   ASSERT_TRUE(f);

@@ -59,9 +59,10 @@ std::vector<RangeCase> range_cases() {
       {"probe_direct", [](P& p) { p.probe_direct = DirectMode(9); },
        "probe_direct must be frame, shadow-rays, unshadowed, shadow-field or ao (got 9)"},
       {"fixed_rays", [](P& p) { p.fixed_rays = 7; }, "need fixed_rays >= 8 (got 7)"},
-      // 128 blended + 32 fixed rays: a cap below one probe's rays could never trace anything.
-      {"max_rays_per_update", [](P& p) { p.max_rays_per_update = 159; },
-       "max_rays_per_update must be 0 (no cap) or at least one probe's 160 rays (got 159)"},
+      // 128 blended rays (updates do not trace the 32 fixed ones): a cap below one probe's rays
+      // could never trace anything.
+      {"max_rays_per_update", [](P& p) { p.max_rays_per_update = 127; },
+       "max_rays_per_update must be 0 (no cap) or at least one probe's 128 rays (got 127)"},
   };
 }
 
@@ -85,7 +86,7 @@ TEST(FieldParams, BoundsThemselvesAreAccepted) {
         p.relocation_iterations = 0;
         p.classification = false;
       },
-      [](P& p) { p.max_rays_per_update = 160; },
+      [](P& p) { p.max_rays_per_update = 128; },
   };
   for (size_t i = 0; i < edges.size(); ++i) {
     IrradianceFieldParams p;
