@@ -132,14 +132,19 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
   const ProbeStateCounts counts = field.probe_counts();
   const double blend_ms = table.pass_median("field blend") + table.pass_median("blend irradiance") +
                           table.pass_median("blend distance") + table.pass_median("borders");
+  // The fused trace lights its hits itself: no shade pass to show.
+  char shade[32] = "—";
+  if (path == FieldUpdatePath::kSplit) {
+    std::snprintf(shade, sizeof(shade), "%.3f", table.pass_median("field shade"));
+  }
   std::printf(
-      "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %s | %.1f | %.3f | %.3f | %.3f | %.3f | "
+      "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %s | %.1f | %.3f | %s | %.3f | %.3f | "
       "%.3f | %.2f | %.0f | %.3f | %.3f | %.2f | %.3f | %.3f | %.3f | %.3f |\n",
       name.c_str(), gi.scene().triangle_count(), p.counts.x, p.counts.y, p.counts.z,
       static_cast<unsigned long long>(counts.active()),
       static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
       p.rays_per_probe, path_name(path), double(field.gpu_bytes()) / (1 << 20),
-      table.pass_median("field trace"), table.pass_median("field shade"), blend_ms, field_ms,
+      table.pass_median("field trace"), shade, blend_ms, field_ms,
       raw_ms, field_ms / raw_ms, double(field.rays_per_update()) / (field_ms * 1e3), primary_ms,
       primary_raw_ms, primary_ms / primary_raw_ms, table.pass_median("direct"),
       table.pass_median("indirect"), table.pass_median("tonemap"),
