@@ -40,10 +40,11 @@ Result<Camera> camera_from_values(const std::vector<double>& values, const Camer
   }
   camera.up = glm::normalize(glm::cross(right, camera.forward));
   if (values.size() == 7) {
-    if (!(values[6] > 0.0 && values[6] <= 179.0)) {
-      return invalid_argument("camera yfov must be in (0, 179] degrees");
+    if (!(values[6] > 0.0 && values[6] <= kMaxCameraYfovDegrees)) {
+      return invalid_argument("camera yfov must be in (0, " +
+                              std::to_string(int(kMaxCameraYfovDegrees)) + "] degrees");
     }
-    camera.yfov = glm::radians(static_cast<float>(values[6]));
+    camera.yfov = camera_yfov_radians(static_cast<float>(values[6]));
   }
   return camera;
 }

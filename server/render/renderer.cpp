@@ -33,8 +33,10 @@ Status validate(const FrameSettings& s) {
   if (glm::length(c.forward) < 1e-6f || glm::length(glm::cross(c.forward, c.up)) < 1e-6f) {
     return invalid_argument("camera forward must be non-zero and not parallel to up");
   }
-  if (!(c.yfov > 0.0f) || !(c.yfov < 3.1241f)) {
-    return invalid_argument("camera vertical field of view must be in (0, 179] degrees");
+  if (!camera_yfov_in_range(c.yfov)) {
+    return invalid_argument("camera vertical field of view must be in (0, " +
+                            std::to_string(int(kMaxCameraYfovDegrees)) + "] degrees (got " +
+                            std::to_string(c.yfov * 180.0f / 3.14159265f) + ")");
   }
   if (!(c.znear >= 0.0f) || !std::isfinite(c.znear)) {
     return invalid_argument("camera near distance must be finite and >= 0");

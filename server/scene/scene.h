@@ -78,6 +78,20 @@ struct Light {
   float radius = 0.0f;                     // > 0: a spherical light for soft shadows (sidecar only)
 };
 
+// The vertical fields of view a camera may have: (0, kMaxCameraYfovDegrees]. The one declaration
+// that every boundary (RPC, sidecar, --camera) and the renderer check against.
+inline constexpr float kMaxCameraYfovDegrees = 179.0f;
+// Degrees to the radians Camera::yfov holds. Every boundary converts with this one function, so
+// the largest accepted degree value lands exactly on kMaxCameraYfovRadians, never past it.
+constexpr float camera_yfov_radians(float degrees) {
+  return degrees * (3.14159265358979f / 180.0f);
+}
+inline constexpr float kMaxCameraYfovRadians = camera_yfov_radians(kMaxCameraYfovDegrees);
+// Whether `radians` is an allowed Camera::yfov (false for NaN).
+constexpr bool camera_yfov_in_range(float radians) {
+  return radians > 0.0f && radians <= kMaxCameraYfovRadians;
+}
+
 struct Camera {
   std::string name;
   glm::vec3 position{0.0f, 0.0f, 5.0f};

@@ -150,10 +150,11 @@ Result<Camera> read_camera(const json& value) {
   if (value.contains("yfov_degrees")) {
     DDGI_ASSIGN_OR_RETURN(
         const float degrees,
-        read_number(value["yfov_degrees"], path + ".yfov_degrees", Range{0.0, 179.0, true, false}));
-    camera.yfov = degrees * kDegrees;
+        read_number(value["yfov_degrees"], path + ".yfov_degrees",
+                    Range{0.0, kMaxCameraYfovDegrees, true, false}));
+    camera.yfov = camera_yfov_radians(degrees);
   } else {
-    camera.yfov = 45.0f * kDegrees;
+    camera.yfov = camera_yfov_radians(45.0f);
   }
   const glm::vec3 view = target - position;
   const float distance = glm::length(view);

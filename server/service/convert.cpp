@@ -214,11 +214,12 @@ Result<Camera> camera_from_proto(const v1::Camera& in, const Camera& base) {
   camera.up = glm::normalize(glm::cross(side, forward));
   float fov = in.vertical_fov_degrees();
   if (fov == 0.0f) fov = 45.0f;
-  if (!std::isfinite(fov) || !(fov > 0.0f) || fov > 179.0f) {
-    return invalid_argument("camera.vertical_fov_degrees must be finite and in (0, 179] (got " +
+  if (!std::isfinite(fov) || !(fov > 0.0f) || fov > kMaxCameraYfovDegrees) {
+    return invalid_argument("camera.vertical_fov_degrees must be finite and in (0, " +
+                            num(kMaxCameraYfovDegrees) + "] (got " +
                             num(in.vertical_fov_degrees()) + ")");
   }
-  camera.yfov = fov * kPi / 180.0f;
+  camera.yfov = camera_yfov_radians(fov);
   return camera;
 }
 

@@ -33,7 +33,7 @@ every combination of --grids and --rays. Prints a markdown table (median millise
 
   --width N --height N  frame size                                     [1920 x 1080]
   --frames N            timed frames per configuration                 [20]
-  --warmup N            field updates before timing                    [8]
+  --warmup N            field updates, then as many untimed frames, before timing [8]
   --grids LIST          probe grids: 'auto' (fitted, --probes target) or XxYxZ (fitted to the
                         scene bounds with exactly these counts), separated by ';' [auto]
   --probes N            target probe count of 'auto' grids              [512]
@@ -172,7 +172,9 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
                         FrameTarget::create(context, job.settings.width, job.settings.height));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   tools::PassTable table;
-  for (int64_t f = 0; f < job.frames; ++f) {
+  // The warm-up's frames are the timed ones, untimed: the clocks rise under this very load
+  // (field-only warm-up updates, each waited for, leave the GPU idle between them).
+  for (int64_t f = -job.warmup; f < job.frames; ++f) {
     DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> before,
                           gi->frame_update(job.settings.direct_mode, {}));
     for (vk::Pass& p : field.raw_trace_passes()) before.push_back(std::move(p));
@@ -180,7 +182,7 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
       before.push_back(std::move(p));
     }
     DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, *target, before));
-    table.add(frame.pass_times);
+    if (f >= 0) table.add(frame.pass_times);
   }
   print_row(table, *gi, scene_path, path);
   return ok_status();

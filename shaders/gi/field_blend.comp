@@ -2,9 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Fused field update, pass 2: one workgroup per probe blends both of its maps and writes their
 // borders. The probe's rays are loaded into shared memory once per chunk (each ray's direction
-// computed and its distance processed once, not once per texel); every texel of both maps then
-// sums them from there in ray order, as the split per-texel kernels do, so both give the same
-// texels. The borders are copied by the same workgroup once its texels are stored.
+// computed and its distance processed once, not once per texel), packed so that one ray is two
+// 16-byte broadcast reads; each invocation sums them for one irradiance texel and one distance
+// texel at once, in ray order as the split per-texel kernels do, so both give the same texels.
+// Each invocation also writes the border texels that copy its own: no borders pass, no barrier.
 #include "gi/field_blend.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
@@ -12,35 +13,40 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonl
   ProbeRay rays[];
 };
 
-const uint kRayChunk = 256u;  // 7 KiB of shared memory
-shared vec3 chunk_direction[kRayChunk];
-shared vec3 chunk_radiance[kRayChunk];
-shared float chunk_distance[kRayChunk];
+const uint kRayChunk = 256u;                // 8 KiB of shared memory
+shared vec4 chunk_direction_distance[kRayChunk];  // xyz: direction, w: distance as blended
+shared vec4 chunk_radiance[kRayChunk];            // xyz: radiance towards the probe
 
 // Loads rays [start, start + kRayChunk) of the probe whose rays begin at `first`.
 void load_chunk(uint first, uint start) {
   const uint count = min(kRayChunk, field.rays_per_probe - start);
   for (uint i = gl_LocalInvocationIndex; i < count; i += gl_WorkGroupSize.x) {
     const ProbeRay ray = rays[first + start + i];
-    chunk_direction[i] = probe_ray_direction(field.fixed_rays + start + i);
-    chunk_radiance[i] = ray.radiance;
-    chunk_distance[i] = blended_ray_distance(ray.distance);
+    chunk_direction_distance[i] = vec4(probe_ray_direction(field.fixed_rays + start + i),
+                                       blended_ray_distance(ray.distance));
+    chunk_radiance[i] = vec4(ray.radiance, 0.0);
   }
 }
 
-// Adds the loaded chunk's rays to an irradiance texel's (xyz: sum, w: weight) or a distance
-// texel's (xy: sum, w: weight) running sums.
-vec4 sum_chunk(uint count, vec3 texel_direction, bool irradiance, vec4 sums) {
+// One invocation's running sums: irradiance (xyz: cosine-weighted radiance, w: weight) and
+// distance (x: weighted distance, y: weighted squared distance, z: weight).
+struct TexelSums {
+  vec4 irradiance;
+  vec3 distance;
+};
+
+// Adds the loaded chunk's first `count` rays to the sums of the irradiance texel facing
+// `irradiance_direction` and the distance texel facing `distance_direction`. Rays outside a
+// texel's hemisphere add exact zeros (no branch): the sums equal the split kernels'.
+TexelSums sum_chunk(uint count, vec3 irradiance_direction, vec3 distance_direction,
+                    TexelSums sums) {
   for (uint i = 0u; i < count; ++i) {
-    const float c = dot(texel_direction, chunk_direction[i]);
-    if (irradiance) {
-      const float w = max(0.0, c);
-      if (w > 0.0) sums += vec4(w * chunk_radiance[i], w);
-    } else if (c > 0.0) {
-      const float w = pow(c, field.distance_exponent);
-      const float d = chunk_distance[i];
-      sums += vec4(w * d, w * d * d, 0.0, w);
-    }
+    const vec4 ray = chunk_direction_distance[i];
+    const float w_irradiance = max(0.0, dot(irradiance_direction, ray.xyz));
+    sums.irradiance += vec4(w_irradiance * chunk_radiance[i].xyz, w_irradiance);
+    const float w_distance =
+        pow(max(0.0, dot(distance_direction, ray.xyz)), field.distance_exponent);
+    sums.distance += vec3(w_distance * ray.w, w_distance * ray.w * ray.w, w_distance);
   }
   return sums;
 }
@@ -54,39 +60,36 @@ void main() {
   const uint first = probe * rays_per_probe_total() + field.fixed_rays;
   const uint n = field.rays_per_probe;
   const uint ni = field.irradiance_texels, nd = field.distance_texels;
-  const uint texels = ni * ni + nd * nd;  // irradiance texels first, then distance texels
 
-  for (uint base = 0u; base < texels; base += gl_WorkGroupSize.x) {
+  // Invocation t of a round takes irradiance texel t and distance texel t (where they exist).
+  for (uint base = 0u; base < max(ni * ni, nd * nd); base += gl_WorkGroupSize.x) {
     const uint t = base + gl_LocalInvocationIndex;
-    const bool irradiance = t < ni * ni;
-    const uint side = irradiance ? ni : nd;
-    const uint k = irradiance ? t : t - ni * ni;
-    const uvec2 ij = uvec2(k % side, k / side);
-    const vec3 texel_direction = octahedral_texel_direction(ij, side);
-    vec4 sums = vec4(0.0);
+    const uvec2 irradiance_ij = uvec2(t % ni, t / ni);
+    const uvec2 distance_ij = uvec2(t % nd, t / nd);
+    const vec3 irradiance_direction = octahedral_texel_direction(irradiance_ij, ni);
+    const vec3 distance_direction = octahedral_texel_direction(distance_ij, nd);
+    TexelSums sums = TexelSums(vec4(0.0), vec3(0.0));
     for (uint start = 0u; start < n; start += kRayChunk) {
-      // All rays fit one chunk (the common case): it is loaded for the first texels only.
+      // All rays fit one chunk (the common case): it is loaded for the first round only.
       if (n > kRayChunk || base == 0u) {
         barrier();  // the previous chunk's readers are done
         load_chunk(first, start);
         barrier();
       }
-      if (t < texels) sums = sum_chunk(min(kRayChunk, n - start), texel_direction, irradiance, sums);
+      sums = sum_chunk(min(kRayChunk, n - start), irradiance_direction, distance_direction, sums);
     }
-    if (t < texels) {
-      if (irradiance) {
-        blend_irradiance_texel(probe, ij, sums.xyz, sums.w, reset);
-      } else {
-        blend_distance_texel(probe, ij, sums.xy, sums.w, reset);
-      }
+    if (t < ni * ni) {
+      const vec4 texel =
+          blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz, sums.irradiance.w,
+                                 reset);
+      store_irradiance_border_copies(probe, irradiance_ij, texel);
+    }
+    if (t < nd * nd) {
+      const vec4 texel =
+          blend_distance_texel(probe, distance_ij, sums.distance.xy, sums.distance.z, reset);
+      store_distance_border_copies(probe, distance_ij, texel);
     }
   }
-
-  memoryBarrierImage();
-  barrier();  // every texel of both maps is stored
-  const uint borders = 4u * (max(ni, nd) + 1u);
-  for (uint b = gl_LocalInvocationIndex; b < borders; b += gl_WorkGroupSize.x) {
-    copy_border_texel(probe, b);
-  }
+  // Every invocation read the flag before this; no other workgroup blends this probe.
   if (gl_LocalInvocationIndex == 0u) probe_states[probe].flags &= ~kProbeResetHistory;
 }

@@ -7,8 +7,8 @@
 
 #include "common/field_update.glsl"
 
-layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingIrradianceOut, rgba32f) coherent uniform image2D irradiance_out;
-layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDistanceOut, rg32f) coherent uniform image2D distance_out;
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingIrradianceOut, rgba32f) uniform image2D irradiance_out;
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDistanceOut, rg32f) uniform image2D distance_out;
 
 float max_component(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
@@ -24,13 +24,15 @@ ivec2 texel_coord(uint probe, uvec2 ij, uint texels) {
   return ivec2(probe_tile_origin(probe, texels) + kAtlasBorder + ij);
 }
 
-// Blends the cosine-weighted radiance `sum` / `weight_sum` into irradiance texel ij.
-void blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bool reset) {
-  // No ray in this texel's hemisphere this update (very few rays): keep the history.
-  if (!(weight_sum > 0.0)) return;
+// Blends the cosine-weighted radiance `sum` / `weight_sum` into irradiance texel ij; returns
+// the texel as stored (the history, unchanged, when no ray reached its hemisphere).
+vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bool reset) {
   const ivec2 coord = texel_coord(probe, ij, field.irradiance_texels);
+  const vec4 history = imageLoad(irradiance_out, coord);
+  // No ray in this texel's hemisphere this update (very few rays): keep the history.
+  if (!(weight_sum > 0.0)) return history;
   const vec3 fresh = pow(sanitize_radiance(sum / weight_sum), vec3(1.0 / field.irradiance_gamma));
-  const vec3 old = imageLoad(irradiance_out, coord).rgb;
+  const vec3 old = history.rgb;
 
   float hysteresis = field.hysteresis;
   if (reset) {
@@ -42,17 +44,22 @@ void blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bo
     if (change > field.change_threshold) hysteresis = max(0.0, hysteresis - 0.15);
     if (change > field.new_distribution_threshold) hysteresis = 0.0;
   }
-  imageStore(irradiance_out, coord, vec4(mix(fresh, old, hysteresis), 1.0));
+  const vec4 texel = vec4(mix(fresh, old, hysteresis), 1.0);
+  imageStore(irradiance_out, coord, texel);
+  return texel;
 }
 
-// Blends the weighted distance moments `sum` / `weight_sum` into distance texel ij.
-void blend_distance_texel(uint probe, uvec2 ij, vec2 sum, float weight_sum, bool reset) {
-  if (!(weight_sum > 0.0)) return;
+// Blends the weighted distance moments `sum` / `weight_sum` into distance texel ij; returns the
+// texel as stored.
+vec4 blend_distance_texel(uint probe, uvec2 ij, vec2 sum, float weight_sum, bool reset) {
   const ivec2 coord = texel_coord(probe, ij, field.distance_texels);
+  const vec4 history = imageLoad(distance_out, coord);
+  if (!(weight_sum > 0.0)) return history;
   const vec2 fresh = sum / weight_sum;
-  const vec2 old = imageLoad(distance_out, coord).rg;
   const float hysteresis = reset ? 0.0 : field.distance_hysteresis;
-  imageStore(distance_out, coord, vec4(mix(fresh, old, hysteresis), 0.0, 0.0));
+  const vec4 texel = vec4(mix(fresh, history.rg, hysteresis), 0.0, 0.0);
+  imageStore(distance_out, coord, texel);
+  return texel;
 }
 
 // Border texel b (0 <= b < 4 * (n + 1)) of an n x n map: where it is and where it copies from,
@@ -78,6 +85,37 @@ void border_texel(uint b, int n, out ivec2 dst, out ivec2 src) {
     dst = ivec2((corner & 1) == 0 ? -1 : n, corner < 2 ? -1 : n);
     src = ivec2((corner & 1) == 0 ? n - 1 : 0, corner < 2 ? n - 1 : 0);
   }
+}
+
+// The border texels that copy interior texel ij of an n x n map (border_texel read the other
+// way), relative to the map's first interior texel: one per map edge the texel lies on, and
+// for a corner texel the opposite border corner. Returns how many (0 to 3).
+uint border_copies_of(ivec2 ij, int n, out ivec2 dst[3]) {
+  uint count = 0u;
+  if (ij.y == 0) dst[count++] = ivec2(n - 1 - ij.x, -1);
+  if (ij.y == n - 1) dst[count++] = ivec2(n - 1 - ij.x, n);
+  if (ij.x == 0) dst[count++] = ivec2(-1, n - 1 - ij.y);
+  if (ij.x == n - 1) dst[count++] = ivec2(n, n - 1 - ij.y);
+  if ((ij.x == 0 || ij.x == n - 1) && (ij.y == 0 || ij.y == n - 1)) {
+    dst[count++] = ivec2(ij.x == 0 ? n : -1, ij.y == 0 ? n : -1);
+  }
+  return count;
+}
+
+// Writes irradiance texel ij's value into the border texels that copy it (the fused blend: each
+// texel's own invocation writes its copies, no pass and no barrier in between).
+void store_irradiance_border_copies(uint probe, uvec2 ij, vec4 texel) {
+  ivec2 dst[3];
+  const uint count = border_copies_of(ivec2(ij), int(field.irradiance_texels), dst);
+  const ivec2 base = texel_coord(probe, uvec2(0u), field.irradiance_texels);
+  for (uint i = 0u; i < count; ++i) imageStore(irradiance_out, base + dst[i], texel);
+}
+
+void store_distance_border_copies(uint probe, uvec2 ij, vec4 texel) {
+  ivec2 dst[3];
+  const uint count = border_copies_of(ivec2(ij), int(field.distance_texels), dst);
+  const ivec2 base = texel_coord(probe, uvec2(0u), field.distance_texels);
+  for (uint i = 0u; i < count; ++i) imageStore(distance_out, base + dst[i], texel);
 }
 
 // Copies border texel b of probe's irradiance and distance maps (past either map's border

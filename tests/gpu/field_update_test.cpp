@@ -99,29 +99,38 @@ Atlases updated_atlases(const Scene& scene, const GiStackOptions& options, Field
   return a;
 }
 
-// How far apart two atlases are, relative to the larger's largest value: the largest difference
-// and the fraction of values differing by more than 1e-3.
-struct AtlasDifference {
-  double max = 0.0;
-  double above_1e3 = 0.0;
-};
-
-AtlasDifference difference(const IrradianceField::AtlasImage& a,
-                           const IrradianceField::AtlasImage& b) {
-  AtlasDifference d;
-  if (a.texels.size() != b.texels.size() || a.texels.empty()) return {1e30, 1.0};
-  double scale = 0.0;
+// How far apart two atlases are: the largest difference of a value, relative to the largest
+// value of either.
+double max_relative_difference(const IrradianceField::AtlasImage& a,
+                               const IrradianceField::AtlasImage& b) {
+  if (a.texels.size() != b.texels.size() || a.texels.empty()) return 1e30;
+  double scale = 0.0, largest = 0.0;
   for (size_t i = 0; i < a.texels.size(); ++i) {
     scale = std::max({scale, std::abs(double(a.texels[i])), std::abs(double(b.texels[i]))});
+    largest = std::max(largest, std::abs(double(a.texels[i]) - double(b.texels[i])));
   }
-  size_t above = 0;
-  for (size_t i = 0; i < a.texels.size(); ++i) {
-    const double diff = std::abs(double(a.texels[i]) - double(b.texels[i])) / scale;
-    d.max = std::max(d.max, diff);
-    above += diff > 1e-3 ? 1 : 0;
-  }
-  d.above_1e3 = double(above) / double(a.texels.size());
-  return d;
+  return largest / scale;
+}
+
+// Tolerance: the split path keeps the surfel's normals oct-packed (16 bits per axis) between its
+// passes, which moves shading normals, cosines and shadow-ray origins by ~1e-5; the glass
+// products are taken in another order. Measured (lavapipe, both backends): at most 2.5e-5 of
+// the atlas's largest value (one ray per probe; 2.4e-6 at 64 rays), printed per case. Allowed:
+// 1e-3. A wrong texel, ray or border is off by 0.1 to 1 (a planted border fault: 0.86).
+constexpr double kPathTolerance = 1e-3;
+
+// Fused and split atlases of one configuration agree, and are not trivially equal.
+void expect_same_atlases(const char* name, const Atlases& fused, const Atlases& split) {
+  ASSERT_TRUE(fused.ok && split.ok);
+  // Not trivially equal: lit (RGB of the encoded irradiance) and with distances that vary.
+  EXPECT_TRUE(is_nontrivial(fused.irradiance.texels, 0.01, 0.1, 4, 3));
+  EXPECT_TRUE(is_nontrivial(fused.distance.texels, 0.05, 0.2, 2, 1));
+  const double irradiance = max_relative_difference(fused.irradiance, split.irradiance);
+  const double distance = max_relative_difference(fused.distance, split.distance);
+  std::printf("%s: largest difference: irradiance %.2e, distance %.2e (of the largest value)\n",
+              name, irradiance, distance);
+  EXPECT_LE(irradiance, kPathTolerance);
+  EXPECT_LE(distance, kPathTolerance);
 }
 
 struct PathCase {
@@ -137,11 +146,6 @@ struct PathCase {
 
 class FieldUpdatePathTest : public GpuTest, public ::testing::WithParamInterface<PathCase> {};
 
-// Tolerance: the split path keeps the surfel's normals oct-packed (16 bits per axis) between its
-// passes, which moves shading normals, cosines and shadow-ray origins by ~1e-5; the glass
-// products are taken in another order. Measured (ray queries on lavapipe): at most 2e-5 of the
-// atlas's largest value anywhere, and no value off by 1e-3 (printed per case). Allowed: 1e-3 for
-// 99.9 % of the values, 2e-2 for any one (a shadow ray near a silhouette may flip).
 TEST_P(FieldUpdatePathTest, FusedAndSplitGiveTheSameAtlases) {
   const PathCase& c = GetParam();
   GiStackOptions options;
@@ -157,21 +161,7 @@ TEST_P(FieldUpdatePathTest, FusedAndSplitGiveTheSameAtlases) {
   const Scene scene = materials_room();
   const Atlases fused = updated_atlases(scene, options, FieldUpdatePath::kFused, c.updates);
   const Atlases split = updated_atlases(scene, options, FieldUpdatePath::kSplit, c.updates);
-  ASSERT_TRUE(fused.ok && split.ok);
-
-  // Not trivially equal: lit (RGB of the encoded irradiance) and with distances that vary.
-  EXPECT_TRUE(is_nontrivial(fused.irradiance.texels, 0.01, 0.1, 4, 3));
-  EXPECT_TRUE(is_nontrivial(fused.distance.texels, 0.05, 0.2, 2, 1));
-
-  const AtlasDifference irradiance = difference(fused.irradiance, split.irradiance);
-  const AtlasDifference distance = difference(fused.distance, split.distance);
-  std::printf("%s: irradiance max %.2e, above 1e-3 %.4f %%; distance max %.2e, above %.4f %%\n",
-              c.name, irradiance.max, 100.0 * irradiance.above_1e3, distance.max,
-              100.0 * distance.above_1e3);
-  EXPECT_LE(irradiance.above_1e3, 1e-3);
-  EXPECT_LE(distance.above_1e3, 1e-3);
-  EXPECT_LE(irradiance.max, 2e-2);
-  EXPECT_LE(distance.max, 2e-2);
+  expect_same_atlases(c.name, fused, split);
 }
 
 PathCase make_case(const char* name) {
@@ -217,16 +207,7 @@ TEST_F(FieldUpdatePathTest, FusedAndSplitAgreeInTheLivingRoom) {
   ASSERT_TRUE(options.ok()) << options.error().message;
   const Atlases fused = updated_atlases(*scene, *options, FieldUpdatePath::kFused, 2);
   const Atlases split = updated_atlases(*scene, *options, FieldUpdatePath::kSplit, 2);
-  ASSERT_TRUE(fused.ok && split.ok);
-  EXPECT_TRUE(is_nontrivial(fused.irradiance.texels, 0.01, 0.1, 4, 3));
-  const AtlasDifference irradiance = difference(fused.irradiance, split.irradiance);
-  const AtlasDifference distance = difference(fused.distance, split.distance);
-  std::printf("living_room: irradiance max %.2e, above 1e-3 %.4f %%; distance max %.2e\n",
-              irradiance.max, 100.0 * irradiance.above_1e3, distance.max);
-  EXPECT_LE(irradiance.above_1e3, 1e-3);
-  EXPECT_LE(distance.above_1e3, 1e-3);
-  EXPECT_LE(irradiance.max, 2e-2);
-  EXPECT_LE(distance.max, 2e-2);
+  expect_same_atlases("living_room", fused, split);
 }
 
 }  // namespace

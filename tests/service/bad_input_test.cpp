@@ -253,6 +253,27 @@ TEST_F(BadInputTest, Resolution0And100000) {
                {"height 0 is out of range"});
 }
 
+// The largest field of view the RPC accepts is one the renderer draws (it once accepted 179
+// degrees and then failed every frame: the two checked different bounds). Control: just past
+// it is refused at the RPC.
+TEST_F(BadInputTest, TheWidestAcceptedCameraRenders) {
+  ASSERT_TRUE(set_camera(look_at(0, 1, 3, 0, 1, 0, 179.0f)).ok());
+  v1::RenderFrameRequest request;
+  request.set_session_id(session_);
+  request.set_view_id(view_);
+  v1::Frame frame;
+  auto ctx = context();
+  const grpc::Status view_frame = stub_->RenderFrame(ctx.get(), request, &frame);
+  EXPECT_TRUE(view_frame.ok()) << view_frame.error_message();
+  EXPECT_NEAR(frame.camera().vertical_fov_degrees(), 179.0f, 1e-3f);
+  const v1::Camera widest = look_at(0, 1, 3, 0, 1, 0, 179.0f);
+  const grpc::Status one_off = render(session_, 16, 12, &frame, &widest);
+  EXPECT_TRUE(one_off.ok()) << one_off.error_message();
+  EXPECT_NEAR(frame.camera().vertical_fov_degrees(), 179.0f, 1e-3f);
+  expect_error(set_camera(look_at(0, 1, 3, 0, 1, 0, 179.01f)), grpc::StatusCode::INVALID_ARGUMENT,
+               {"camera.vertical_fov_degrees must be finite and in (0, 179]", "179.01"});
+}
+
 TEST_F(BadInputTest, NanInfInCamera) {
   expect_error(set_camera(look_at(kNaN, 1, 3, 0, 1, 0)), grpc::StatusCode::INVALID_ARGUMENT,
                {"camera.position must be finite", "nan"});
