@@ -21,8 +21,8 @@ vk::Pass with_access(vk::Pass pass, std::vector<vk::ResourceRef> reads,
   return pass;
 }
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
-// field_blend: one workgroup per probe. 64 lanes: the default maps' 64 + 256 texels in five
-// full rounds.
+// field_blend: one workgroup per probe. 64 invocations: the default maps (8x8 irradiance, 16x16
+// distance texels) in four full rounds.
 constexpr glm::uvec3 kProbeWorkgroup{64, 1, 1};
 // Probes per row of workgroups (inside every device's 65535-workgroup limit per dimension).
 constexpr uint32_t kProbeWorkgroupRow = 4096;

@@ -36,17 +36,21 @@ struct TexelSums {
 };
 
 // Adds the loaded chunk's first `count` rays to the sums of the irradiance texel facing
-// `irradiance_direction` and the distance texel facing `distance_direction`. Rays outside a
-// texel's hemisphere add exact zeros (no branch): the sums equal the split kernels'.
-TexelSums sum_chunk(uint count, vec3 irradiance_direction, vec3 distance_direction,
-                    TexelSums sums) {
+// `irradiance_direction` and the distance texel facing `distance_direction` (each only where
+// this invocation has one: the distance map has more texels by default). Rays outside a
+// texel's hemisphere add exact zeros (no branch per ray): the sums equal the split kernels'.
+TexelSums sum_chunk(uint count, bool irradiance, vec3 irradiance_direction, bool distance,
+                    vec3 distance_direction, TexelSums sums) {
   for (uint i = 0u; i < count; ++i) {
     const vec4 ray = chunk_direction_distance[i];
-    const float w_irradiance = max(0.0, dot(irradiance_direction, ray.xyz));
-    sums.irradiance += vec4(w_irradiance * chunk_radiance[i].xyz, w_irradiance);
-    const float w_distance =
-        pow(max(0.0, dot(distance_direction, ray.xyz)), field.distance_exponent);
-    sums.distance += vec3(w_distance * ray.w, w_distance * ray.w * ray.w, w_distance);
+    if (irradiance) {
+      const float w = max(0.0, dot(irradiance_direction, ray.xyz));
+      sums.irradiance += vec4(w * chunk_radiance[i].xyz, w);
+    }
+    if (distance) {
+      const float w = pow(max(0.0, dot(distance_direction, ray.xyz)), field.distance_exponent);
+      sums.distance += vec3(w * ray.w, w * ray.w * ray.w, w);
+    }
   }
   return sums;
 }
@@ -64,6 +68,7 @@ void main() {
   // Invocation t of a round takes irradiance texel t and distance texel t (where they exist).
   for (uint base = 0u; base < max(ni * ni, nd * nd); base += gl_WorkGroupSize.x) {
     const uint t = base + gl_LocalInvocationIndex;
+    const bool irradiance = t < ni * ni, distance = t < nd * nd;
     const uvec2 irradiance_ij = uvec2(t % ni, t / ni);
     const uvec2 distance_ij = uvec2(t % nd, t / nd);
     const vec3 irradiance_direction = octahedral_texel_direction(irradiance_ij, ni);
@@ -76,15 +81,16 @@ void main() {
         load_chunk(first, start);
         barrier();
       }
-      sums = sum_chunk(min(kRayChunk, n - start), irradiance_direction, distance_direction, sums);
+      sums = sum_chunk(min(kRayChunk, n - start), irradiance, irradiance_direction, distance,
+                       distance_direction, sums);
     }
-    if (t < ni * ni) {
+    if (irradiance) {
       const vec4 texel =
           blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz, sums.irradiance.w,
                                  reset);
       store_irradiance_border_copies(probe, irradiance_ij, texel);
     }
-    if (t < nd * nd) {
+    if (distance) {
       const vec4 texel =
           blend_distance_texel(probe, distance_ij, sums.distance.xy, sums.distance.z, reset);
       store_distance_border_copies(probe, distance_ij, texel);

@@ -4,7 +4,7 @@
 // a borders pass). Atlases after several updates are compared texel by texel in scenes with
 // what the ray code treats specially: thin glass (also more layers than the payload keeps),
 // alpha-masked cut-outs, punctual lights, emitters (also sampled), the shadow field, probe
-// management, the ray budget's window, and 1 to 1024 rays per probe.
+// management, the ray budget's window, 1 to 1024 rays per probe, and uneven map sizes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -141,6 +141,7 @@ struct PathCase {
   uint32_t emitter_samples = 0;
   uint64_t max_rays_per_update = 0;  // 0: every probe every update
   bool probe_management = true;
+  uint32_t irradiance_texels = 8, distance_texels = 16;
   vk::TraceBackend backend = vk::TraceBackend::kRayQuery;
 };
 
@@ -154,6 +155,8 @@ TEST_P(FieldUpdatePathTest, FusedAndSplitGiveTheSameAtlases) {
   options.field = room_field(c.rays);
   options.field.emitter_samples = c.emitter_samples;
   options.field.max_rays_per_update = c.max_rays_per_update;
+  options.field.irradiance_texels = c.irradiance_texels;
+  options.field.distance_texels = c.distance_texels;
   if (!c.probe_management) {
     options.field.relocation_iterations = 0;
     options.field.classification = false;
@@ -188,6 +191,10 @@ std::vector<PathCase> path_cases() {
   cases.push_back(make_case("budget_window"));  // 10 probes per update, wrapping around
   cases.back().max_rays_per_update = 10 * 64;
   cases.back().updates = 9;
+  // More irradiance than distance texels, neither a multiple of the 64-invocation workgroup.
+  cases.push_back(make_case("uneven_maps"));
+  cases.back().irradiance_texels = 12;
+  cases.back().distance_texels = 6;
   cases.push_back(make_case("no_probe_management"));
   cases.back().probe_management = false;
   return cases;
