@@ -120,12 +120,14 @@ Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<Frame
   // Building an irradiance-field update may rewrite its host-visible probe list, which the
   // previous update (in a frame still in flight) reads: that one must be done first.
   if (batch->field_due && field()) DDGI_TRY(wait_for_frames_on_gpu());
+  const bool behind_another = !in_flight_.empty();
   DDGI_ASSIGN_OR_RETURN(frame.pending, state_.scene->submit(settings, target, batch->field_due));
   if (batch->field_due) {
     batch->field_due = false;
     frame.carries_update = true;
     env_.metrics->field_updates.fetch_add(1);
   }
+  if (behind_another) env_.metrics->frames_pipelined.fetch_add(1);
   frame.batch = batch;
   FrameRecord& record = frame.record;
   record.session_id = state_.id;
