@@ -97,6 +97,7 @@ Result<std::unique_ptr<FrameTarget>> FrameTarget::create(vk::Context& context, u
                          vk::MemoryUsage::kDeviceLocal, "gbuffer"));
   DDGI_ASSIGN_OR_RETURN(target->images_, ImageBuffers::create(context, width, height, "frame"));
   DDGI_ASSIGN_OR_RETURN(target->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
+  DDGI_ASSIGN_OR_RETURN(target->commands_, vk::CommandSlot::create(context, "frame commands"));
   vk::DescriptorWriter(target->frame_set_)
       .buffer(gpu::kFrameBindingGBuffer, target->gbuffer_)
       .buffer(gpu::kFrameBindingRadiance, target->images_.radiance)

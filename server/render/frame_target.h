@@ -1,8 +1,10 @@
 // Where frames are drawn: the per-view GPU buffers of one image size. ImageBuffers are the HDR
 // radiance and RGBA8 images with their host-visible copies (the renderer's frames and the path
 // tracer's accumulations both end in them); a FrameTarget adds the G-buffer, the frame
-// descriptor set that binds them, and the timer of the frames drawn into it. The Renderer's
-// kernels are built once per scene; every view of a session has its own FrameTarget.
+// descriptor set that binds them, the timer of the frames drawn into it and the command buffer
+// they are recorded into (with its fence), so a frame can be submitted into one target while
+// another target's frame is still on the GPU. The Renderer's kernels are built once per scene;
+// every view of a session has two FrameTargets, its frames alternating between them.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "vk/command_slot.h"
 #include "vk/context.h"
 #include "vk/pass.h"
 #include "vk/pipeline.h"
@@ -54,8 +57,13 @@ class FrameTarget {
   const vk::Buffer& gbuffer() const { return gbuffer_; }
   VkDescriptorSet frame_set() const { return frame_set_; }
   vk::GpuTimer& timer() { return timer_; }
+  vk::CommandSlot& commands() { return commands_; }
   // Frames drawn into this target so far (FrameResult::frame_index).
   uint64_t next_frame_index() { return frame_index_++; }
+  // A frame was submitted into it and not yet finished (read back, or dropped): until then
+  // neither its buffers nor its timer may be reused (Renderer::submit refuses it).
+  bool busy() const { return busy_; }
+  void set_busy(bool busy) { busy_ = busy; }
 
  private:
   FrameTarget() = default;
@@ -66,6 +74,8 @@ class FrameTarget {
   ImageBuffers images_;
   vk::GpuTimer timer_;
   uint64_t frame_index_ = 0;
+  bool busy_ = false;
+  vk::CommandSlot commands_;  // last: destroyed first, it waits for a frame still in flight
 };
 
 }  // namespace ddgi

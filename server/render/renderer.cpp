@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "shared/frame_data.h"
 
@@ -74,11 +75,10 @@ Status Renderer::create_kernels() {
   DDGI_ASSIGN_OR_RETURN(
       primary_, vk::Kernel::create(
                     context_, {"primary", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
-  DDGI_ASSIGN_OR_RETURN(primary_raw_trace_,
-                        vk::Kernel::create(context_,
-                                           {"primary_raw_trace", true, layouts,
-                                            sizeof(gpu::PrimaryConstants)},
-                                           backend_));
+  DDGI_ASSIGN_OR_RETURN(
+      primary_raw_trace_,
+      vk::Kernel::create(
+          context_, {"primary_raw_trace", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
   DDGI_ASSIGN_OR_RETURN(
       direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
                                   backend_));
@@ -258,28 +258,84 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings,
   return render(settings, *own_target_, before);
 }
 
-Result<FrameResult> Renderer::render(const FrameSettings& settings, FrameTarget& target,
-                                     std::span<const vk::Pass> before) {
+Result<PendingFrame> Renderer::submit(const FrameSettings& settings, FrameTarget& target,
+                                      std::span<const vk::Pass> before) {
   DDGI_TRY(check_inputs(settings));
   if (target.width() != settings.width || target.height() != settings.height) {
     return invalid_argument("the frame target is " + std::to_string(target.width()) + "x" +
                             std::to_string(target.height()) + ", the frame " +
                             std::to_string(settings.width) + "x" + std::to_string(settings.height));
   }
+  if (target.busy()) {
+    return failed_precondition("the frame target still holds a frame in flight: finish it first");
+  }
   const std::vector<vk::Pass> passes = frame_passes(settings, target);
-  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    target.timer().begin_frame(cmd);
-    vk::record_passes(cmd, &target.timer(), before);
-    vk::record_passes(cmd, &target.timer(), passes);
-  }));
+  DDGI_ASSIGN_OR_RETURN(VkCommandBuffer cmd, target.commands().begin());
+  target.timer().begin_frame(cmd);
+  vk::record_passes(cmd, &target.timer(), before);
+  vk::record_passes(cmd, &target.timer(), passes);
+  DDGI_TRY(target.commands().submit());
+  target.set_busy(true);
+  PendingFrame frame;
+  frame.context_ = &context_;
+  frame.target_ = &target;
+  frame.width_ = settings.width;
+  frame.height_ = settings.height;
+  frame.read_radiance_ = settings.read_radiance;
+  frame.frame_index_ = target.next_frame_index();
+  return frame;
+}
+
+Result<FrameResult> Renderer::render(const FrameSettings& settings, FrameTarget& target,
+                                     std::span<const vk::Pass> before) {
+  DDGI_ASSIGN_OR_RETURN(PendingFrame frame, submit(settings, target, before));
+  return frame.finish();
+}
+
+PendingFrame& PendingFrame::operator=(PendingFrame&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    target_ = std::exchange(other.target_, nullptr);
+    width_ = other.width_;
+    height_ = other.height_;
+    read_radiance_ = other.read_radiance_;
+    frame_index_ = other.frame_index_;
+  }
+  return *this;
+}
+
+void PendingFrame::release() {
+  if (!target_) return;
+  (void)target_->commands().wait();  // an error here leaves nothing to do but let go
+  target_->set_busy(false);
+  target_ = nullptr;
+}
+
+Status PendingFrame::wait() {
+  if (!target_) return failed_precondition("the frame was finished already");
+  return target_->commands().wait();
+}
+
+Result<FrameResult> PendingFrame::finish() {
+  if (!target_) return failed_precondition("the frame was finished already");
+  const Status waited = wait();
+  if (!waited.ok()) {
+    release();
+    return waited.error();
+  }
+  FrameTarget& target = *target_;
   FrameResult result;
-  result.width = settings.width;
-  result.height = settings.height;
-  if (settings.read_radiance) result.radiance = target.images().read_radiance();
+  result.width = width_;
+  result.height = height_;
+  if (read_radiance_) result.radiance = target.images().read_radiance();
   result.ldr = target.images().read_ldr();
-  DDGI_ASSIGN_OR_RETURN(result.pass_times, target.timer().read());
-  result.frame_index = target.next_frame_index();
-  context_.collect_garbage();
+  Result<std::vector<vk::PassTime>> times = target.timer().read();
+  release();
+  if (!times.ok()) return times.error();
+  result.pass_times = std::move(times).value();
+  result.frame_index = frame_index_;
+  context_->collect_garbage();
   return result;
 }
 

@@ -1,8 +1,10 @@
 // Renders frames of one GPU scene: primary rays into a G-buffer, direct light, indirect light
 // from the irradiance field, tone mapping, readback. Owns the kernels of these passes, built
-// once per scene; frames are drawn into FrameTargets (one per view). It never decides when
-// fields update: the caller hands it the update passes (GiStack::frame_update) to record first,
-// in the same submission.
+// once per scene; frames are drawn into FrameTargets (two per view in the service). It never
+// decides when fields update: the caller hands it the update passes (GiStack::frame_update) to
+// record first, in the same submission. A frame is submitted without waiting (submit(), into
+// the target's own command buffer) and finished later (PendingFrame::finish: wait, read back),
+// so a caller can record the next frame while the GPU runs this one; render() does both.
 #pragma once
 
 #include <memory>
@@ -55,6 +57,39 @@ struct FrameResult {
   uint64_t frame_index = 0;
 };
 
+// A frame submitted into its target and not yet read back (Renderer::submit). finish() waits
+// for the GPU and reads the frame back; one dropped unfinished is still waited for, so its
+// target is never re-recorded, reused or freed while the GPU draws into it. The target must
+// outlive it.
+class PendingFrame {
+ public:
+  PendingFrame() = default;
+  PendingFrame(PendingFrame&& other) noexcept { *this = std::move(other); }
+  PendingFrame& operator=(PendingFrame&& other) noexcept;
+  PendingFrame(const PendingFrame&) = delete;
+  PendingFrame& operator=(const PendingFrame&) = delete;
+  ~PendingFrame() { release(); }
+
+  // Waits for the GPU to finish the frame (no readback); idempotent.
+  Status wait();
+  // Waits, then reads back the 8-bit image, the HDR one when the settings asked for it, and
+  // the pass times. Once: the frame is done afterwards (and the target free).
+  Result<FrameResult> finish();
+  // Submitted and not finished yet.
+  bool active() const { return target_ != nullptr; }
+
+ private:
+  friend class Renderer;
+  void release();  // waits if still active, then frees the target
+
+  vk::Context* context_ = nullptr;
+  FrameTarget* target_ = nullptr;
+  uint32_t width_ = 0;
+  uint32_t height_ = 0;
+  bool read_radiance_ = false;
+  uint64_t frame_index_ = 0;
+};
+
 class Renderer {
  public:
   // `backend`: the tracing backend of every kernel (must be supported by the device).
@@ -64,8 +99,13 @@ class Renderer {
                                                   IrradianceField* field, vk::TraceBackend backend,
                                                   ShadowField* shadow_field = nullptr);
 
-  // Renders one frame into `target` (made for the settings' size), after recording `before`
-  // (field updates) in the same submission.
+  // Records one frame into `target` (made for the settings' size, not busy with another frame)
+  // after `before` (field updates), in one submission into the target's command buffer, and
+  // returns without waiting. Frames submitted one after another run in that order on the GPU
+  // (one queue, a full barrier after every pass), so a frame's field update follows the last.
+  Result<PendingFrame> submit(const FrameSettings& settings, FrameTarget& target,
+                              std::span<const vk::Pass> before = {});
+  // submit() and PendingFrame::finish(): the frame, waited for.
   Result<FrameResult> render(const FrameSettings& settings, FrameTarget& target,
                              std::span<const vk::Pass> before = {});
   // The same into the renderer's own target, resized to the settings' size as needed.

@@ -74,6 +74,10 @@ std::string Metrics::prometheus_text() const {
                double(sessions_created.load()));
   write_scalar(out, "ddgi_frames_rendered_total", "counter", "View frames rendered.",
                double(frames_rendered.load()));
+  write_scalar(out, "ddgi_frames_pipelined_total", "counter",
+               "View frames submitted while an earlier frame of their session was not yet read "
+               "back.",
+               double(frames_pipelined.load()));
   write_scalar(out, "ddgi_frames_sent_total", "counter", "Frames written to streams.",
                double(frames_sent.load()));
   write_scalar(out, "ddgi_frames_dropped_total", "counter",

@@ -37,11 +37,13 @@ class Metrics {
   std::atomic<int64_t> streams{0};
   std::atomic<uint64_t> sessions_created{0};
   std::atomic<uint64_t> frames_rendered{0};
+  // View frames submitted while an earlier frame of their session was not yet read back.
+  std::atomic<uint64_t> frames_pipelined{0};
   std::atomic<uint64_t> frames_sent{0};
   std::atomic<uint64_t> frames_dropped{0};
   std::atomic<uint64_t> field_updates{0};
 
-  Histogram frame_seconds;      // CPU wall time of one view's render (GPU submit and wait)
+  Histogram frame_seconds;      // wall time of one view's frame, from recording to readback
   Histogram gi_update_seconds;  // GPU time of one field update
   Histogram encode_seconds;     // JPEG encoding of one frame
 

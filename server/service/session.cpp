@@ -1,6 +1,8 @@
 // A session's commands: each public method queues one on the session's loop, where it acts on
 // the session's state and fills its reply through convert.h (service/session.h). The frames
-// are in session_frames.cpp.
+// are in session_frames.cpp. Commands that touch the scene's or the fields' GPU state (host
+// writes, descriptor updates, buffers replaced) first finish the frames in flight; camera and
+// view commands do not, so a moving camera keeps the frames pipelined.
 #include "service/session.h"
 
 #include "core/log.h"
@@ -51,6 +53,7 @@ v1::SessionSummary Session::summary() const {
 // ---- Scene --------------------------------------------------------------------------------------
 
 Status Session::load(const SceneRequest& request) {
+  finish_frames();
   DDGI_ASSIGN_OR_RETURN(
       std::unique_ptr<SessionScene> scene,
       SessionScene::load(*env_.context, request, state_.options, *env_.limits, state_.id));
@@ -163,6 +166,7 @@ void Session::add_light(v1::Light light, v1::LightReply* reply, Completion done)
   loop_.enqueue_sync(
       true,
       [this, light, reply]() -> Status {
+        finish_frames();
         DDGI_ASSIGN_OR_RETURN(SessionScene * scene, require_scene());
         const uint32_t max_lights = env_.limits->max_lights;
         if (scene->lights().size() >= max_lights) {
@@ -183,6 +187,7 @@ void Session::update_light(uint32_t light_id, v1::Light light, v1::LightReply* r
   loop_.enqueue_sync(
       true,
       [this, light_id, light, reply]() -> Status {
+        finish_frames();
         DDGI_ASSIGN_OR_RETURN(const LightSlot* slot, find_light(light_id));
         DDGI_ASSIGN_OR_RETURN(const Light value, light_from_proto(light, slot->light));
         DDGI_ASSIGN_OR_RETURN(const LightSlot updated, state_.scene->update_light(light_id, value));
@@ -196,6 +201,7 @@ void Session::remove_light(uint32_t light_id, v1::LightReply* reply, Completion 
   loop_.enqueue_sync(
       true,
       [this, light_id, reply]() -> Status {
+        finish_frames();
         DDGI_TRY(find_light(light_id));
         DDGI_ASSIGN_OR_RETURN(const LightSlot removed, state_.scene->remove_light(light_id));
         to_proto(removed, loop_.applying_seq(), reply);
@@ -209,6 +215,7 @@ void Session::set_instance_transform(uint32_t index, glm::mat4 transform, v1::In
   loop_.enqueue_sync(
       true,
       [this, index, transform, reply]() -> Status {
+        finish_frames();
         DDGI_ASSIGN_OR_RETURN(SessionScene * scene, require_scene());
         GpuScene& gpu_scene = scene->gpu_scene();
         const size_t instances = gpu_scene.scene().instances.size();
@@ -242,6 +249,7 @@ void Session::get_field_params(v1::FieldKind kind, v1::FieldParams* reply, Compl
   loop_.enqueue_sync(
       false,
       [this, kind, reply]() -> Status {
+        finish_frames();
         DDGI_TRY(require_field(kind));
         if (kind == v1::FIELD_KIND_SHADOW) {
           to_proto(*shadow_field(), loop_.applying_seq(), reply);
@@ -258,6 +266,7 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
   loop_.enqueue_sync(
       true,
       [this, kind, assignments, reply]() -> Status {
+        finish_frames();
         DDGI_TRY(require_field(kind));
         if (kind == v1::FIELD_KIND_SHADOW) {
           ShadowFieldParams params = shadow_field()->params();
@@ -360,6 +369,7 @@ void Session::query(std::vector<IrradianceQuery> points, v1::QueryIrradianceRepl
   loop_.enqueue_sync(
       false,
       [this, shared_points, reply]() -> Status {
+        finish_frames();
         DDGI_TRY(require_field(v1::FIELD_KIND_IRRADIANCE));
         DDGI_ASSIGN_OR_RETURN(const std::vector<glm::vec3> values, field()->query(*shared_points));
         to_proto(values, field()->updates(), reply);
@@ -373,6 +383,7 @@ void Session::dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone d
   loop_.enqueue(
       false,
       [this, kind, format, shared_done](Completion) {
+        finish_frames();
         auto result = [&]() -> Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>> {
           const bool shadow_kind =
               kind == v1::ATLAS_KIND_SHADOW || kind == v1::ATLAS_KIND_SHADOW_MOMENTS;

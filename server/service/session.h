@@ -3,11 +3,14 @@
 // own thread, paces frames and orders teardown; the SessionState (session_state.h: the loaded
 // scene, the views, the one-off frames) is what the commands act on; convert.h turns that state
 // into replies and frames. RPCs never touch GPU state: each method here queues a command, and
-// each loop iteration applies the queued commands, updates the fields once, renders every view
-// someone is waiting for and hands the images to the encoder.
+// each loop iteration applies the queued commands, updates the fields once, submits a frame of
+// every view someone is waiting for, then reads back the previous iteration's frames (still on
+// the GPU while this one's were recorded) and hands their images to the encoder.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -88,13 +91,24 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
 
  private:
   // One loop iteration's frames share one update of the fields: recorded with the first frame
-  // rendered, reported by every frame of the iteration.
+  // submitted, reported by every frame of the iteration (its times are known once that first
+  // frame is read back, which is before the others: frames are finished in submission order).
   struct FrameBatch {
     uint64_t index = 0;
     CommandStamp last_applied;
     bool field_due = false;
     std::vector<vk::PassTime> gi_passes;
     double gi_ms = 0.0;
+  };
+  // A frame submitted and not yet read back, and what its encoder job needs besides the image.
+  struct InFlightFrame {
+    std::shared_ptr<FrameBatch> batch;
+    bool carries_update = false;          // the batch's field update was recorded with this frame
+    std::shared_ptr<FrameTarget> target;  // a view's: kept until read back (before `pending`)
+    PendingFrame pending;
+    FrameRecord record;
+    std::unique_ptr<EncodeJob> job;  // its key, streams and waiters; the image comes at the end
+    std::chrono::steady_clock::time_point start;
   };
 
   Session(std::string id, SessionEnv env, SessionOptions options);
@@ -103,19 +117,27 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   bool wants_frame() override;
   void produce_frame(uint64_t index, const CommandStamp& last_applied) override;
   void after_iteration() override;
+  void finish_frames() override;
   void tear_down() override;
 
   // Frames (session_frames.cpp).
-  void render_views(FrameBatch& batch);
-  void render_one_offs(FrameBatch& batch);
-  // Renders one frame of `config` and `camera` into `target`: the encoder's job without its
-  // key, streams and waiters. `view_id` is empty for a one-off frame.
-  Result<std::unique_ptr<EncodeJob>> render_job(FrameBatch& batch, const std::string& view_id,
-                                                const ViewConfig& config, const Camera& camera,
-                                                FrameTarget& target);
-  // The renderer's frame; its field-update passes go to the batch, its own to `record`.
-  Result<FrameResult> render(FrameBatch& batch, const ViewConfig& config, const Camera& camera,
-                             FrameTarget& target, FrameRecord& record);
+  // Submits a frame of every view someone waits for (into in_flight_).
+  void render_views(const std::shared_ptr<FrameBatch>& batch);
+  // One-off frames share targets per size: each is submitted and finished in turn, after the
+  // frames in flight.
+  void render_one_offs(const std::shared_ptr<FrameBatch>& batch);
+  // Submits one frame of `config` and `camera` into `target`, with the batch's field update
+  // when it is still due. The job has no key, streams or waiters yet; `view_id` is empty for a
+  // one-off frame.
+  Result<InFlightFrame> submit_frame(const std::shared_ptr<FrameBatch>& batch,
+                                     const std::string& view_id, const ViewConfig& config,
+                                     const Camera& camera, FrameTarget& target);
+  // Reads a frame back and hands it to the encoder, or fails its streams and waiters.
+  void deliver(InFlightFrame& frame);
+  // Delivers the frames in flight of batches before `index`, oldest first.
+  void deliver_older_than(uint64_t index);
+  // Waits until the GPU is done with every frame in flight (reading nothing back).
+  Status wait_for_frames_on_gpu();
 
   // Commands' pieces (session.cpp), on the loop thread.
   Status load(const SceneRequest& request);
@@ -137,6 +159,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   SessionEnv env_;
   // Owned by the loop thread.
   SessionState state_;
+  std::deque<InFlightFrame> in_flight_;  // in submission order; after state_, freed before it
   // Shared with RPC threads.
   mutable std::mutex summary_mutex_;
   v1::SessionSummary summary_;

@@ -1,9 +1,14 @@
-// A session's frames: what its loop calls (SessionLoop::Owner), rendering every view someone
-// waits for and the one-off frames, one field update per iteration shared by all of them, and
-// handing the images to the encoder (service/session.h).
+// A session's frames: what its loop calls (SessionLoop::Owner). Each iteration submits a frame
+// of every view someone waits for (the first carries the iteration's one field update, shared
+// by all of them), then reads back the previous iteration's frames, which the GPU ran while
+// these were recorded, and hands them to the encoder; one-off frames are drawn last, one at a
+// time (service/session.h). Views alternate between two frame targets, so a view has at most
+// two frames in flight and never draws into a target whose frame is not read back.
 #include <chrono>
+#include <limits>
 
 #include "core/log.h"
+#include "service/grpc_status.h"
 #include "service/session.h"
 
 namespace ddgi::service {
@@ -13,12 +18,18 @@ bool Session::wants_frame() {
 }
 
 void Session::produce_frame(uint64_t index, const CommandStamp& last_applied) {
-  FrameBatch batch;
-  batch.index = index;
-  batch.last_applied = last_applied;
-  batch.field_due = field() != nullptr || shadow_field() != nullptr;
+  auto batch = std::make_shared<FrameBatch>();
+  batch->index = index;
+  batch->last_applied = last_applied;
+  batch->field_due = field() != nullptr || shadow_field() != nullptr;
   render_views(batch);
+  // This iteration's frames are on the queue behind the previous one's: read those back now.
+  deliver_older_than(index);
   render_one_offs(batch);
+}
+
+void Session::finish_frames() {
+  deliver_older_than(std::numeric_limits<uint64_t>::max());
 }
 
 void Session::after_iteration() {
@@ -30,6 +41,7 @@ void Session::after_iteration() {
 }
 
 void Session::tear_down() {
+  finish_frames();  // their waiters get their frames before the rest learn of the close
   const Error closed = unavailable("session " + state_.id + " was closed");
   state_.views.close_all(closed);
   state_.one_offs.close_all(closed);
@@ -39,104 +51,142 @@ void Session::tear_down() {
   LOG_INFO << "session closed session=" << state_.id << " frames=" << loop_.frames();
 }
 
-void Session::render_views(FrameBatch& batch) {
+void Session::render_views(const std::shared_ptr<FrameBatch>& batch) {
   std::vector<std::string> failed;
   for (auto& [view_id, view] : state_.views.all()) {
     view.drop_ended_streams();
     if (view.streams.empty() && view.waiters.empty()) continue;
-    Result<std::unique_ptr<EncodeJob>> job = [&]() -> Result<std::unique_ptr<EncodeJob>> {
-      DDGI_ASSIGN_OR_RETURN(FrameTarget * target, view.sized_target(*env_.context));
-      return render_job(batch, view_id, view.config, view.camera, *target);
+    if (view.resized()) finish_frames();  // its targets go: the budget then sees the new ones
+    Result<InFlightFrame> frame = [&]() -> Result<InFlightFrame> {
+      DDGI_ASSIGN_OR_RETURN(std::shared_ptr<FrameTarget> target, view.take_target(*env_.context));
+      DDGI_ASSIGN_OR_RETURN(InFlightFrame submitted,
+                            submit_frame(batch, view_id, view.config, view.camera, *target));
+      submitted.target = std::move(target);
+      return submitted;
     }();
-    if (!job.ok()) {
+    if (!frame.ok()) {
       LOG_WARNING << "render failed session=" << state_.id << " view=" << view_id << ": "
-                  << job.error().message;
-      view.fail(job.error());
+                  << frame.error().message;
+      view.fail(frame.error());
       if (view.owned_by_stream) failed.push_back(view_id);
       continue;
     }
-    (*job)->view_key = state_.id + "/" + view_id;
-    (*job)->streams = view.streams;
-    (*job)->waiters = std::move(view.waiters);
+    EncodeJob& job = *frame->job;
+    job.view_key = state_.id + "/" + view_id;
+    job.streams = view.streams;
+    job.waiters = std::move(view.waiters);
     view.waiters.clear();
-    env_.encoder->submit(std::move(*job));
+    in_flight_.push_back(std::move(*frame));
   }
   for (const std::string& view_id : failed) state_.views.erase(view_id);
 }
 
-void Session::render_one_offs(FrameBatch& batch) {
-  for (OneOffFrame& one_off : state_.one_offs.take()) {
-    Result<std::unique_ptr<EncodeJob>> job = [&]() -> Result<std::unique_ptr<EncodeJob>> {
+void Session::render_one_offs(const std::shared_ptr<FrameBatch>& batch) {
+  std::vector<OneOffFrame> one_offs = state_.one_offs.take();
+  if (one_offs.empty()) return;
+  // After the views' frames: one of them may carry the field update these frames report.
+  finish_frames();
+  for (OneOffFrame& one_off : one_offs) {
+    Result<InFlightFrame> frame = [&]() -> Result<InFlightFrame> {
       DDGI_ASSIGN_OR_RETURN(
           FrameTarget * target,
           state_.one_offs.target(*env_.context, one_off.config.width, one_off.config.height));
-      return render_job(batch, "", one_off.config, one_off.camera, *target);
+      return submit_frame(batch, "", one_off.config, one_off.camera, *target);
     }();
-    if (!job.ok()) {
+    if (!frame.ok()) {
       LOG_WARNING << "render failed session=" << state_.id << " one-off frame " << one_off.number
-                  << ": " << job.error().message;
-      one_off.waiter(job.error());
+                  << ": " << frame.error().message;
+      one_off.waiter(frame.error());
       continue;
     }
-    (*job)->view_key = state_.id + "/one-off " + std::to_string(one_off.number);
-    (*job)->waiters.push_back(std::move(one_off.waiter));
-    env_.encoder->submit(std::move(*job));
+    frame->job->view_key = state_.id + "/one-off " + std::to_string(one_off.number);
+    frame->job->waiters.push_back(std::move(one_off.waiter));
+    deliver(*frame);  // the next one-off of this size reuses the target
   }
 }
 
-Result<std::unique_ptr<EncodeJob>> Session::render_job(FrameBatch& batch,
-                                                       const std::string& view_id,
-                                                       const ViewConfig& config,
-                                                       const Camera& camera, FrameTarget& target) {
-  FrameRecord record;
-  DDGI_ASSIGN_OR_RETURN(FrameResult frame, render(batch, config, camera, target, record));
+Status Session::wait_for_frames_on_gpu() {
+  for (InFlightFrame& frame : in_flight_) DDGI_TRY(frame.pending.wait());
+  return ok_status();
+}
+
+Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<FrameBatch>& batch,
+                                                     const std::string& view_id,
+                                                     const ViewConfig& config, const Camera& camera,
+                                                     FrameTarget& target) {
+  const FrameSettings settings = frame_settings(config, camera, state_.options.direct_mode);
+  InFlightFrame frame;
+  frame.start = std::chrono::steady_clock::now();
+  // Building an irradiance-field update may rewrite its host-visible probe list, which the
+  // previous update (in a frame still in flight) reads: that one must be done first.
+  if (batch->field_due && field()) DDGI_TRY(wait_for_frames_on_gpu());
+  const bool behind_another = !in_flight_.empty();
+  DDGI_ASSIGN_OR_RETURN(frame.pending, state_.scene->submit(settings, target, batch->field_due));
+  if (batch->field_due) {
+    batch->field_due = false;
+    frame.carries_update = true;
+    env_.metrics->field_updates.fetch_add(1);
+  }
+  if (behind_another) env_.metrics->frames_pipelined.fetch_add(1);
+  frame.batch = batch;
+  FrameRecord& record = frame.record;
   record.session_id = state_.id;
   record.view_id = view_id;
-  record.index = batch.index;
-  record.width = frame.width;
-  record.height = frame.height;
+  record.index = batch->index;
+  record.width = settings.width;
+  record.height = settings.height;
   record.camera = camera;
-  record.gi_passes = batch.gi_passes;
-  record.gi_ms = batch.gi_ms;
-  record.last_applied = batch.last_applied;
-  record.rendered_unix_us = unix_micros();
+  record.last_applied = batch->last_applied;
   record.field_updates = field()          ? field()->updates()
                          : shadow_field() ? shadow_field()->updates()
                                           : 0;
-  auto job = std::make_unique<EncodeJob>();
-  job->image = encode::ImageRgba8{frame.width, frame.height, std::move(frame.ldr)};
-  job->quality = config.jpeg_quality;
-  job->max_frame_bytes = env_.limits->max_message_bytes;
-  to_proto(record, &job->frame);
-  return job;
+  frame.job = std::make_unique<EncodeJob>();
+  frame.job->quality = config.jpeg_quality;
+  frame.job->max_frame_bytes = env_.limits->max_message_bytes;
+  return frame;
 }
 
-Result<FrameResult> Session::render(FrameBatch& batch, const ViewConfig& config,
-                                    const Camera& camera, FrameTarget& target,
-                                    FrameRecord& record) {
-  const FrameSettings settings = frame_settings(config, camera, state_.options.direct_mode);
-  const auto start = std::chrono::steady_clock::now();
-  DDGI_ASSIGN_OR_RETURN(FrameResult frame, state_.scene->render(settings, target, batch.field_due));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (const vk::PassTime& pass : frame.pass_times) {
+void Session::deliver(InFlightFrame& frame) {
+  Result<FrameResult> result = frame.pending.finish();
+  frame.target.reset();
+  EncodeJob& job = *frame.job;
+  if (!result.ok()) {
+    LOG_WARNING << "render failed session=" << state_.id << " frame=" << job.view_key << ": "
+                << result.error().message;
+    for (auto& stream : job.streams) stream->finish(to_grpc(result.error()));
+    for (auto& waiter : job.waiters) waiter(result.error());
+    return;
+  }
+  FrameBatch& batch = *frame.batch;
+  FrameRecord& record = frame.record;
+  for (const vk::PassTime& pass : result->pass_times) {
     const bool gi_pass =
         pass.group == vk::PassGroup::kIrradianceField || pass.group == vk::PassGroup::kShadowField;
-    if (gi_pass) {
+    if (!gi_pass) {
+      record.view_passes.push_back(pass);
+    } else if (frame.carries_update) {
       batch.gi_passes.push_back(pass);
       batch.gi_ms += pass.milliseconds;
-    } else {
-      record.view_passes.push_back(pass);
     }
   }
-  if (batch.field_due) {
-    batch.field_due = false;
-    env_.metrics->field_updates.fetch_add(1);
-    env_.metrics->gi_update_seconds.observe(batch.gi_ms * 1e-3);
-  }
+  if (frame.carries_update) env_.metrics->gi_update_seconds.observe(batch.gi_ms * 1e-3);
+  record.gi_passes = batch.gi_passes;
+  record.gi_ms = batch.gi_ms;
+  record.rendered_unix_us = unix_micros();
   env_.metrics->frames_rendered.fetch_add(1);
-  env_.metrics->frame_seconds.observe(seconds);
-  return frame;
+  env_.metrics->frame_seconds.observe(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.start).count());
+  job.image = encode::ImageRgba8{result->width, result->height, std::move(result->ldr)};
+  to_proto(record, &job.frame);
+  env_.encoder->submit(std::move(frame.job));
+}
+
+void Session::deliver_older_than(uint64_t index) {
+  while (!in_flight_.empty() && in_flight_.front().batch->index < index) {
+    InFlightFrame frame = std::move(in_flight_.front());
+    in_flight_.pop_front();
+    deliver(frame);
+  }
 }
 
 }  // namespace ddgi::service

@@ -67,14 +67,23 @@ void SessionLoop::run(const std::shared_ptr<void>&, const std::function<void()>&
 
 bool SessionLoop::wait_for_work(std::deque<Command>& batch) {
   std::unique_lock<std::mutex> lock(mutex_);
+  bool finished = false;
   while (!stopping_ && queue_.empty()) {
-    if (!owner_.wants_frame()) {
-      wake_.wait(lock);
+    const bool wanted = owner_.wants_frame();
+    const auto next = last_frame_start_ + interval_;
+    if (wanted && std::chrono::steady_clock::now() >= next) break;
+    if (!finished) {  // about to sleep: what is in flight is delivered now, not a frame later
+      lock.unlock();
+      owner_.finish_frames();
+      lock.lock();
+      finished = true;
       continue;
     }
-    const auto next = last_frame_start_ + interval_;
-    if (std::chrono::steady_clock::now() >= next) break;
-    wake_.wait_until(lock, next);
+    if (wanted) {
+      wake_.wait_until(lock, next);
+    } else {
+      wake_.wait(lock);
+    }
   }
   if (stopping_) return false;
   batch.swap(queue_);

@@ -1,8 +1,11 @@
 // The engine of a session, apart from what the session holds: a command queue that one thread
 // runs in arrival order, the sequence numbers that say which command a frame already shows,
 // frame pacing (at most --max-fps frames a second, none while nobody waits for one) and the
-// order of teardown. It knows nothing of scenes, views or the wire: its owner says whether a
-// frame is wanted, produces it, and frees its state when the loop ends.
+// order of teardown. Frames are pipelined: an iteration's frames are read back during the next
+// iteration, after its frames were submitted, or before the loop sleeps (finish_frames), so a
+// paced or idle loop still delivers each frame as soon as the GPU is done with it. It knows nothing
+// of scenes, views or the wire: its owner says whether a frame is wanted, produces it, and frees
+// its state when the loop ends.
 #pragma once
 
 #include <chrono>
@@ -39,9 +42,11 @@ class SessionLoop {
     // Whether someone waits for a frame (a stream or a one-shot request). Called under the
     // loop's lock: it must not call back into the loop.
     virtual bool wants_frame() = 0;
-    // Renders one frame; `index` counts the loop's frames from 1, `last_applied` is the newest
-    // state-changing command applied before it.
+    // Starts one frame (and may finish the previous one); `index` counts the loop's frames from
+    // 1, `last_applied` is the newest state-changing command applied before it.
     virtual void produce_frame(uint64_t index, const CommandStamp& last_applied) = 0;
+    // The loop is about to sleep (no frame due): finish every frame still in flight.
+    virtual void finish_frames() = 0;
     // After every iteration (commands, and a frame if one was due).
     virtual void after_iteration() = 0;
     // Once, after stop(): queued commands have failed; end streams and free everything.

@@ -74,8 +74,8 @@ Result<LightSlot> SessionScene::remove_light(uint32_t id) {
   return lights_.remove(id, [this](const auto& lights) { return upload_lights(lights); });
 }
 
-Result<FrameResult> SessionScene::render(const FrameSettings& settings, FrameTarget& target,
-                                         bool field_due) {
+Result<PendingFrame> SessionScene::submit(const FrameSettings& settings, FrameTarget& target,
+                                          bool field_due) {
   if (!renderer_) {
     DDGI_ASSIGN_OR_RETURN(renderer_, Renderer::create(*context_, gi_->scene(), field(),
                                                       context_->default_backend(), shadow_field()));
@@ -84,7 +84,7 @@ Result<FrameResult> SessionScene::render(const FrameSettings& settings, FrameTar
   if (field_due) {
     DDGI_ASSIGN_OR_RETURN(update, gi_->frame_update(settings.direct_mode, {}));
   }
-  return renderer_->render(settings, target, update);
+  return renderer_->submit(settings, target, update);
 }
 
 }  // namespace ddgi::service

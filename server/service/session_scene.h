@@ -62,9 +62,10 @@ class SessionScene {
   Result<LightSlot> update_light(uint32_t id, const Light& light);
   Result<LightSlot> remove_light(uint32_t id);
 
-  // Renders a frame into `target`, after one update of each field when `field_due`. The
-  // renderer is built at the first frame.
-  Result<FrameResult> render(const FrameSettings& settings, FrameTarget& target, bool field_due);
+  // Submits a frame into `target`, after one update of each field when `field_due`, without
+  // waiting for it. The renderer is built at the first frame. Building the irradiance field's
+  // update may write its host-visible probe list: no earlier update may be in flight then.
+  Result<PendingFrame> submit(const FrameSettings& settings, FrameTarget& target, bool field_due);
 
  private:
   SessionScene() = default;

@@ -33,12 +33,27 @@ void SessionView::drop_ended_streams() {
   std::erase_if(streams, [](const auto& stream) { return stream->ended(); });
 }
 
-Result<FrameTarget*> SessionView::sized_target(vk::Context& context) {
-  if (!target || target->width() != config.width || target->height() != config.height) {
-    target.reset();  // first, so that the budget sees only the new target
-    DDGI_ASSIGN_OR_RETURN(target, FrameTarget::create(context, config.width, config.height));
+bool SessionView::resized() const {
+  for (const auto& target : targets) {
+    if (target && (target->width() != config.width || target->height() != config.height)) {
+      return true;
+    }
   }
-  return target.get();
+  return false;
+}
+
+Result<std::shared_ptr<FrameTarget>> SessionView::take_target(vk::Context& context) {
+  if (resized()) {
+    for (auto& target : targets) target.reset();  // first, so the budget sees only new ones
+  }
+  std::shared_ptr<FrameTarget>& target = targets[next_target];
+  if (!target) {
+    DDGI_ASSIGN_OR_RETURN(std::unique_ptr<FrameTarget> made,
+                          FrameTarget::create(context, config.width, config.height));
+    target = std::move(made);
+  }
+  next_target ^= 1u;
+  return target;
 }
 
 void SessionView::fail(const Error& error) {

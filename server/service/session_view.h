@@ -1,9 +1,11 @@
-// The views of a session: each is a client's camera and image settings, the frame target it is
-// drawn into, and who waits for its frames (streams, one-shot RenderFrame calls). A ViewSet
+// The views of a session: each is a client's camera and image settings, the two frame targets
+// its frames alternate between (one can be drawn while the other's frame is still in flight),
+// and who waits for its frames (streams, one-shot RenderFrame calls). A ViewSet
 // holds a session's views by id and enforces --max-views-per-session. Owned and used by the
 // session's loop thread only.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -41,7 +43,10 @@ struct SessionView {
   std::string id;
   ViewConfig config;
   Camera camera;
-  std::unique_ptr<FrameTarget> target;  // made at its first frame, remade when resized
+  // Made when first drawn into, remade when resized. Shared with the frames in flight: a frame
+  // holds its target until it is read back, whatever happens to the view meanwhile.
+  std::array<std::shared_ptr<FrameTarget>, 2> targets;
+  uint32_t next_target = 0;  // the target of the next frame
   std::vector<std::shared_ptr<FrameStreamState>> streams;
   std::vector<FrameWaiter> waiters;
   bool owned_by_stream = false;  // deleted when its stream ends
@@ -50,9 +55,12 @@ struct SessionView {
   // A live stream or a waiting RenderFrame.
   bool wants_frame() const;
   void drop_ended_streams();
-  // The target at the config's size, made or remade (the old one freed first, so the budget
-  // sees only the new one).
-  Result<FrameTarget*> sized_target(vk::Context& context);
+  // Whether a target was made at another size than the config's now.
+  bool resized() const;
+  // The target of the next frame at the config's size, made or remade (after resized(), the
+  // caller finishes the frames in flight first, so the budget sees only the new targets); the
+  // frame after it goes to the other one.
+  Result<std::shared_ptr<FrameTarget>> take_target(vk::Context& context);
   // Ends its streams with `error` and answers its waiters with it.
   void fail(const Error& error);
 };

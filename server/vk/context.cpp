@@ -6,6 +6,7 @@
 
 #include "core/log.h"
 #include "vk/check.h"
+#include "vk/command_slot.h"
 
 namespace ddgi::vk {
 namespace {
@@ -240,7 +241,6 @@ Status Context::init(const ContextOptions& options) {
   DDGI_TRY(pick_queue_family());
   DDGI_TRY(create_device());
   load_device_functions(debug_utils);
-  DDGI_TRY(create_command_objects());
 
   memory_budget_ = options.memory_budget_bytes;
   LOG_INFO << "vulkan device: " << caps_.device_name << " (" << caps_.driver_name << "), ray query "
@@ -367,6 +367,7 @@ Status Context::create_device() {
   features12.descriptorBindingPartiallyBound = VK_TRUE;
   features12.descriptorBindingVariableDescriptorCount = VK_TRUE;
   features12.hostQueryReset = VK_TRUE;
+  features12.timelineSemaphore = VK_TRUE;  // core in 1.2; tests hold submissions back with it
   VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features2.features.shaderInt64 = VK_TRUE;
   features2.pNext = &features12;
@@ -421,27 +422,17 @@ void Context::load_device_functions(bool debug_utils) {
   }
 }
 
-Status Context::create_command_objects() {
-  VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pool_info.flags =
-      VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool_info.queueFamilyIndex = queue_family_;
-  VK_TRY(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_TRY(vkCreateFence(device_, &fence_info, nullptr, &fence_));
-  return ok_status();
-}
+Context::Context() = default;
 
 Context::~Context() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    idle_one_shots_.clear();  // into the garbage below
     {
-      std::lock_guard<std::mutex> lock(submit_mutex_);
-      completed_serial_ = submitted_serial_;
+      std::lock_guard<std::mutex> lock(serial_mutex_);
+      pending_serials_.clear();  // the device is idle: everything completed
     }
     collect_garbage();
-    if (fence_) vkDestroyFence(device_, fence_, nullptr);
-    if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
@@ -465,43 +456,60 @@ void Context::set_name(uint64_t handle, VkObjectType type, const std::string& na
   fn_.vkSetDebugUtilsObjectNameEXT(device_, &info);
 }
 
-Status Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) {
-  // One queue and one pool, used by one thread at a time: sessions serialize here.
-  std::lock_guard<std::mutex> lock(submit_mutex_);
-  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  alloc.commandPool = command_pool_;
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VK_TRY(vkAllocateCommandBuffers(device_, &alloc, &cmd));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VkResult result = vkBeginCommandBuffer(cmd, &begin);
-  if (result == VK_SUCCESS) {
-    record(cmd);
-    result = vkEndCommandBuffer(cmd);
-  }
-  if (result == VK_SUCCESS) {
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    result = vkQueueSubmit(queue_, 1, &submit, fence_);
-    if (result == VK_SUCCESS) {
-      ++submitted_serial_;
-      result = vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX);
-      vkResetFences(device_, 1, &fence_);
-      if (result == VK_SUCCESS) completed_serial_ = submitted_serial_;
+Result<std::unique_ptr<CommandSlot>> Context::take_one_shot() {
+  {
+    std::lock_guard<std::mutex> lock(one_shot_mutex_);
+    if (!idle_one_shots_.empty()) {
+      std::unique_ptr<CommandSlot> slot = std::move(idle_one_shots_.back());
+      idle_one_shots_.pop_back();
+      return slot;
     }
   }
-  vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
-  if (result != VK_SUCCESS) return vk_error(result, "GPU submission");
+  DDGI_ASSIGN_OR_RETURN(CommandSlot slot, CommandSlot::create(*this, "one-shot commands"));
+  return std::make_unique<CommandSlot>(std::move(slot));
+}
+
+void Context::return_one_shot(std::unique_ptr<CommandSlot> slot) {
+  std::lock_guard<std::mutex> lock(one_shot_mutex_);
+  idle_one_shots_.push_back(std::move(slot));
+}
+
+Status Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) {
+  DDGI_ASSIGN_OR_RETURN(std::unique_ptr<CommandSlot> slot, take_one_shot());
+  DDGI_ASSIGN_OR_RETURN(VkCommandBuffer cmd, slot->begin());
+  record(cmd);
+  DDGI_TRY(slot->submit());
+  DDGI_TRY(slot->wait());
+  return_one_shot(std::move(slot));  // kept only after a clean run: a failed one is dropped
   return ok_status();
+}
+
+Result<uint64_t> Context::submit(const VkSubmitInfo& info, VkFence fence) {
+  // One queue, used by one thread at a time; only vkQueueSubmit waits here.
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  VK_TRY(vkQueueSubmit(queue_, 1, &info, fence));
+  std::lock_guard<std::mutex> serials(serial_mutex_);
+  const uint64_t serial = ++submitted_serial_;
+  pending_serials_.insert(serial);
+  return serial;
+}
+
+Status Context::wait(uint64_t serial, VkFence fence) {
+  VK_TRY(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+  std::lock_guard<std::mutex> lock(serial_mutex_);
+  pending_serials_.erase(serial);
+  return ok_status();
+}
+
+uint64_t Context::completed_serial() const {
+  std::lock_guard<std::mutex> lock(serial_mutex_);
+  return pending_serials_.empty() ? submitted_serial_ : *pending_serials_.begin() - 1;
 }
 
 void Context::defer_destroy(std::function<void()> destroy) {
   uint64_t serial;
   {
-    std::lock_guard<std::mutex> lock(submit_mutex_);
+    std::lock_guard<std::mutex> lock(serial_mutex_);
     serial = submitted_serial_;
   }
   std::lock_guard<std::mutex> lock(garbage_mutex_);
@@ -509,11 +517,7 @@ void Context::defer_destroy(std::function<void()> destroy) {
 }
 
 void Context::collect_garbage() {
-  uint64_t completed;
-  {
-    std::lock_guard<std::mutex> lock(submit_mutex_);
-    completed = completed_serial_;
-  }
+  const uint64_t completed = completed_serial();
   std::deque<std::function<void()>> ready;
   {
     std::lock_guard<std::mutex> lock(garbage_mutex_);

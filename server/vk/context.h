@@ -11,12 +11,15 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "core/result.h"
 
 namespace ddgi::vk {
+
+class CommandSlot;
 
 // How rays are traced: inline ray queries in compute shaders, or ray-tracing pipelines.
 enum class TraceBackend { kRayQuery, kPipeline };
@@ -100,8 +103,17 @@ class Context {
   // Debug names show up in validation messages and GPU debuggers.
   void set_name(uint64_t handle, VkObjectType type, const std::string& name) const;
 
-  // Records `record` into a one-shot command buffer, submits it and waits for it.
+  // Records `record` into a one-shot command buffer, submits it and waits for it. Only the
+  // submission holds the queue lock: recording and waiting do not, so several threads (sessions)
+  // may have work in flight at once.
   Status submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+  // Submits recorded work (`info`: its command buffers, and any semaphores) that signals
+  // `fence`, and returns at once. The queue lock covers this vkQueueSubmit only (the queue must
+  // be externally synchronized). Returns the submission's serial, for wait().
+  Result<uint64_t> submit(const VkSubmitInfo& info, VkFence fence);
+  // Waits, holding no lock, for `fence`, the fence of submission `serial`; from then on the
+  // submission counts as completed (deferred destruction). Every submission must be waited for.
+  Status wait(uint64_t serial, VkFence fence);
 
   // Deferred destruction: `destroy` runs once the GPU has finished every submission made
   // before this call. Objects can be dropped at any time without waiting for the GPU.
@@ -127,7 +139,7 @@ class Context {
   bool validation_enabled() const { return validation_enabled_; }
 
  private:
-  Context() = default;
+  Context();
   // init() in the order it runs: each step fills the members the next ones read.
   Status init(const ContextOptions& options);
   Status create_instance(const std::vector<const char*>& layers, bool debug_utils, bool validation);
@@ -138,7 +150,9 @@ class Context {
   // The logical device with every tracing feature the device has, so either backend can run.
   Status create_device();
   void load_device_functions(bool debug_utils);
-  Status create_command_objects();
+  // A one-shot command slot for submit_and_wait (an idle one, or a new one), and its return.
+  Result<std::unique_ptr<CommandSlot>> take_one_shot();
+  void return_one_shot(std::unique_ptr<CommandSlot> slot);
   static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -149,17 +163,22 @@ class Context {
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
-  VkCommandPool command_pool_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
   DeviceCapabilities caps_;
   DeviceFunctions fn_;
   TraceBackend default_backend_ = TraceBackend::kRayQuery;
   bool validation_enabled_ = false;
   std::atomic<uint32_t> validation_messages_{0};
 
-  std::mutex submit_mutex_;
+  // Held for vkQueueSubmit only (and the serial it assigns, so serials follow queue order).
+  std::mutex queue_mutex_;
+  // Guards the serials: the newest submitted, and those submitted and not yet waited for. A
+  // submission counts as completed once it and every one before it were waited for.
+  mutable std::mutex serial_mutex_;
   uint64_t submitted_serial_ = 0;
-  uint64_t completed_serial_ = 0;
+  std::set<uint64_t> pending_serials_;
+  uint64_t completed_serial() const;
+  std::mutex one_shot_mutex_;
+  std::vector<std::unique_ptr<CommandSlot>> idle_one_shots_;
   std::mutex garbage_mutex_;
   std::deque<std::pair<uint64_t, std::function<void()>>> garbage_;
 
