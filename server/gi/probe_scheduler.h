@@ -45,6 +45,8 @@ class ProbeScheduler {
   const std::vector<uint32_t>& active() const { return active_; }
   // True once after the active list changed (so it can be uploaded again).
   bool take_active_changed();
+  // Whether it changed since the last take_active_changed(), without taking it.
+  bool active_changed() const { return active_changed_; }
 
   struct Window {
     uint32_t start = 0;  // index into active()

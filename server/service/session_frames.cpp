@@ -118,8 +118,11 @@ Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<Frame
   InFlightFrame frame;
   frame.start = std::chrono::steady_clock::now();
   // Building an irradiance-field update may rewrite its host-visible probe list, which the
-  // previous update (in a frame still in flight) reads: that one must be done first.
-  if (batch->field_due && field()) DDGI_TRY(wait_for_frames_on_gpu());
+  // previous update (in a frame still in flight) reads: that one must be done first. In a
+  // steady field the list stays and frames overlap on the GPU.
+  if (batch->field_due && field() && field()->next_update_rewrites_probe_list()) {
+    DDGI_TRY(wait_for_frames_on_gpu());
+  }
   const bool behind_another = !in_flight_.empty();
   DDGI_ASSIGN_OR_RETURN(frame.pending, state_.scene->submit(settings, target, batch->field_due));
   if (batch->field_due) {
