@@ -9,7 +9,8 @@
 #   deploy/service-bench.sh run OUT_DIR   # on the GPU host (with the Vulkan loader in .gl/)
 #
 # Environment for `run`: SCENES (default "cornell_box modern_hall living_room"), SIZES (default
-# "1280x720 1920x1080"), SECONDS_PER_RUN (10), ENCODE_THREADS (8), WARMUP (32).
+# "1280x720 1920x1080"), SECONDS_PER_RUN (10), ENCODE_THREADS (8), WARMUP (32), MULTI_VIEWS (4)
+# and MULTI_SIZE (1280x720): that many clients streaming views of one session at that size.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # CARRY: a bundle with bin/ (ddgi-server, ddgi-client-lean, spirv/), lib/ and scenes/; `run`
@@ -81,13 +82,17 @@ run() {
   "${client[@]}" load "$scene" --warmup "${WARMUP:-32}" >"$out/multi.session.json"
   local session pids=()
   session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/multi.session.json" | head -n 1)
+  local multi_size=${MULTI_SIZE:-1280x720}
   for i in $(seq 1 "$views"); do
-    "${client[@]}" stream --session "$session" --width 1280 --height 720 --frames 1000000 \
-      --seconds "${SECONDS_PER_RUN:-10}" >"$out/multi.$i.json" &
+    "${client[@]}" stream --session "$session" --width "${multi_size%x*}" \
+      --height "${multi_size#*x}" --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" \
+      >"$out/multi.$i.json" &
     pids+=($!)
   done
   wait "${pids[@]}"
-  for i in $(seq 1 "$views"); do echo "multi $i/$views 1280x720: $(tr -d '\n ' <"$out/multi.$i.json")"; done
+  for i in $(seq 1 "$views"); do
+    echo "multi $i/$views $multi_size: $(tr -d '\n ' <"$out/multi.$i.json")"
+  done
   "${client[@]}" close --session "$session" >/dev/null
   kill -TERM "$server"
   wait "$server"
