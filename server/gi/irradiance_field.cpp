@@ -461,8 +461,8 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
   last_update_probe_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_traced_lights_ = traced_lights(direct_mode);
-  last_update_rays_ = {window.start,        probe_list_size_, window.count,
-                       params_.rays_per_probe, 0,             params_.fixed_rays};
+  last_update_rays_ = {window.start,      probe_list_size_, window.count, params_.rays_per_probe, 0,
+                       params_.fixed_rays};
 
   std::vector<vk::Pass> passes = {vk::upload_pass(
       "field constants", vk::PassGroup::kIrradianceField, constants_, constants(direct_mode))};
@@ -495,13 +495,14 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
                                {&probes_, &probe_list_}, {&surfels_}));
   passes.push_back(with_access(linear_pass("field shade", shade, rays, shadow_set),
                                {&surfels_, &irradiance_, &distance_}, {&rays_}));
-  passes.push_back(with_access(linear_pass("blend irradiance", blend_irradiance_, per_probe(ti * ti)),
-                               {&rays_, &probes_}, {&irradiance_}));
+  passes.push_back(
+      with_access(linear_pass("blend irradiance", blend_irradiance_, per_probe(ti * ti)),
+                  {&rays_, &probes_}, {&irradiance_}));
   passes.push_back(with_access(linear_pass("blend distance", blend_distance_, per_probe(td * td)),
                                {&rays_, &probes_}, {&distance_, &probes_}));
-  passes.push_back(with_access(
-      linear_pass("borders", borders_, per_probe(4 * (std::max(ti, td) + 1))), {},
-      {&irradiance_, &distance_}));
+  passes.push_back(
+      with_access(linear_pass("borders", borders_, per_probe(4 * (std::max(ti, td) + 1))), {},
+                  {&irradiance_, &distance_}));
 }
 
 std::vector<vk::Pass> IrradianceField::raw_trace_passes() const {

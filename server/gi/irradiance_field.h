@@ -159,8 +159,8 @@ class IrradianceField {
   float hysteresis_cap_ = 1.0f;  // warm_up() lowers the hysteresis below this for a while
   uint64_t gpu_bytes_ = 0;
 
-  FieldSets sets_;  // sampling (set 2 of frames), update and query sets; query kernel; timer
-  vk::Kernel trace_;                    // fused: traces and lights (also the fixed rays)
+  FieldSets sets_;    // sampling (set 2 of frames), update and query sets; query kernel; timer
+  vk::Kernel trace_;  // fused: traces and lights (also the fixed rays)
   vk::Kernel trace_with_shadow_field_;  // only with a shadow field
   vk::Kernel blend_;                    // fused: both maps and their borders, per probe
   vk::Kernel manage_;
@@ -181,7 +181,7 @@ class IrradianceField {
   uint32_t probe_list_size_ = 0;
   bool probe_list_is_active_ = false;  // else it holds probes being managed
   ProbeScheduler scheduler_;
-  uint64_t seen_moves_ = 0;  // GpuScene::move_count() already handled
+  uint64_t seen_moves_ = 0;      // GpuScene::move_count() already handled
   LinearWork last_update_rays_;  // the blended rays of the last update (raw_trace_passes)
   uint64_t last_update_probe_rays_ = 0;
   uint64_t last_update_shaded_rays_ = 0;

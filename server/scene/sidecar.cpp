@@ -148,10 +148,9 @@ Result<Camera> read_camera(const json& value) {
   Camera camera;
   camera.name = "sidecar";
   if (value.contains("yfov_degrees")) {
-    DDGI_ASSIGN_OR_RETURN(
-        const float degrees,
-        read_number(value["yfov_degrees"], path + ".yfov_degrees",
-                    Range{0.0, kMaxCameraYfovDegrees, true, false}));
+    DDGI_ASSIGN_OR_RETURN(const float degrees,
+                          read_number(value["yfov_degrees"], path + ".yfov_degrees",
+                                      Range{0.0, kMaxCameraYfovDegrees, true, false}));
     camera.yfov = camera_yfov_radians(degrees);
   } else {
     camera.yfov = camera_yfov_radians(45.0f);

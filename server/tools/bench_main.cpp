@@ -144,19 +144,17 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
       static_cast<unsigned long long>(counts.active()),
       static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
       p.rays_per_probe, path_name(path), double(field.gpu_bytes()) / (1 << 20),
-      table.pass_median("field trace"), shade, blend_ms, field_ms,
-      raw_ms, field_ms / raw_ms, double(field.rays_per_update()) / (field_ms * 1e3), primary_ms,
-      primary_raw_ms, primary_ms / primary_raw_ms, table.pass_median("direct"),
-      table.pass_median("indirect"), table.pass_median("tonemap"),
-      table.others_median(vk::PassGroup::kIrradianceField));
+      table.pass_median("field trace"), shade, blend_ms, field_ms, raw_ms, field_ms / raw_ms,
+      double(field.rays_per_update()) / (field_ms * 1e3), primary_ms, primary_raw_ms,
+      primary_ms / primary_raw_ms, table.pass_median("direct"), table.pass_median("indirect"),
+      table.pass_median("tonemap"), table.others_median(vk::PassGroup::kIrradianceField));
   std::fflush(stdout);
 }
 
 // One table row: a GI stack for the configuration, warmed up, then `frames` timed frames, each
 // with both raw-ray baselines recorded after the update in the same submission.
 Status bench_row(vk::Context& context, const BenchJob& job, const std::string& scene_path,
-                 const Scene& scene, const std::string& grid, uint32_t rays,
-                 FieldUpdatePath path) {
+                 const Scene& scene, const std::string& grid, uint32_t rays, FieldUpdatePath path) {
   DDGI_ASSIGN_OR_RETURN(
       GiStackOptions options,
       fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
@@ -189,11 +187,11 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
 }
 
 Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
-                                                  {"width", "height", "frames", "warmup", "grids",
-                                                   "probes", "rays", "paths", "backend", "field",
-                                                   "device"},
-                                                  {"help"}));
+  DDGI_ASSIGN_OR_RETURN(
+      Flags flags, Flags::parse(argc, argv,
+                                {"width", "height", "frames", "warmup", "grids", "probes", "rays",
+                                 "paths", "backend", "field", "device"},
+                                {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");

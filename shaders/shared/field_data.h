@@ -53,7 +53,7 @@ struct ProbeState {
 };
 
 // What one traced probe ray brought back: all the blends and probe management read.
-// `distance` says what was hit (shaders/common/field.glsl encodes and decodes it):
+// `distance` says what was hit (shaders/common/field_update.glsl encodes and decodes it):
 //   +t: a front face at distance t;  -t (sign bit set, also for t = 0): a back face;
 //   +infinity: nothing within max_ray_distance.
 struct ProbeRay {
@@ -64,20 +64,20 @@ struct ProbeRay {
 // The split update only (field_trace_surfels, then field_shade): the surface a ray found,
 // kept between the two passes. The fused update (field_trace) shades where it traces.
 struct ProbeSurfel {
-  vec3 position;     // hit point
-  float distance;    // hit distance; max_ray_distance on a miss
+  vec3 position;   // hit point
+  float distance;  // hit distance; max_ray_distance on a miss
   vec3 albedo;
-  uint normal_oct;   // shading normal on the side the ray sees
+  uint normal_oct;  // shading normal on the side the ray sees
   vec3 emission;
-  uint flags;        // kRay*
+  uint flags;  // kRay*
   uint geometric_normal_oct;
 };
 
 struct FieldConstants {
   vec3 origin;
-  uint rays_per_probe;       // shaded and blended
+  uint rays_per_probe;  // shaded and blended
   vec3 spacing;
-  uint fixed_rays;           // traced first, never rotated, never blended
+  uint fixed_rays;  // traced first, never rotated, never blended
   ivec3 counts;
   uint probe_count;
   uint irradiance_texels;
@@ -116,13 +116,13 @@ DDGI_CONST uint kProbeModeClassify = 1u;  // write each probe's state from its f
 // Push constants of the linear (one invocation per item) field kernels. The probes a dispatch
 // works on are a window of the probe list: list[(list_start + i) % list_size].
 struct FieldDispatch {
-  uint count;           // invocations in this dispatch
-  uint row_width;       // invocations per row when the dispatch is folded into 2D
-  uint list_start;      // first entry of the window
-  uint list_size;       // entries in the probe list (the window wraps around)
-  uint per_probe;       // invocations per probe (rays, texels, border texels)
-  uint first_ray;       // ray index of the first ray a tracing dispatch handles
-  uint mode;            // kProbeMode* (relocate/classify kernel only)
+  uint count;       // invocations in this dispatch
+  uint row_width;   // invocations per row when the dispatch is folded into 2D
+  uint list_start;  // first entry of the window
+  uint list_size;   // entries in the probe list (the window wraps around)
+  uint per_probe;   // invocations per probe (rays, texels, border texels)
+  uint first_ray;   // ray index of the first ray a tracing dispatch handles
+  uint mode;        // kProbeMode* (relocate/classify kernel only)
   uint pad0;
 };
 
@@ -134,7 +134,7 @@ DDGI_CONST uint kFieldQueryBindingAnswers = 1;  // vec4 per point: irradiance M 
 struct FieldQuery {
   vec3 position;
   float pad0;
-  vec3 normal;     // unit
+  vec3 normal;  // unit
   float pad1;
   vec3 to_viewer;  // unit; the self-shadow bias leans this way
   float pad2;

@@ -208,9 +208,9 @@ TEST_F(FieldUpdatePathTest, FusedAndSplitAgreeInTheLivingRoom) {
   if (!std::filesystem::exists(kRepo + "/../shared/scenes")) GTEST_SKIP() << "no ../shared/scenes";
   auto scene = load_scene(kRepo + "/scenes/living_room.ddgi.json");
   ASSERT_TRUE(scene.ok()) << scene.error().message;
-  auto options = fitted_gi_options(*scene, true, DirectMode::kTracedShadows,
-                                   {"counts=6,3,6", "rays_per_probe=64"}, {},
-                                   vk::TraceBackend::kRayQuery);
+  auto options =
+      fitted_gi_options(*scene, true, DirectMode::kTracedShadows,
+                        {"counts=6,3,6", "rays_per_probe=64"}, {}, vk::TraceBackend::kRayQuery);
   ASSERT_TRUE(options.ok()) << options.error().message;
   const Atlases fused = updated_atlases(*scene, *options, FieldUpdatePath::kFused, 2);
   const Atlases split = updated_atlases(*scene, *options, FieldUpdatePath::kSplit, 2);

@@ -125,8 +125,8 @@ TEST_P(MaterialsTest, GlassStacksTintExactlyBeyondThePayload) {
   for (int panes = 0; panes <= 5; ++panes) {
     const glm::vec3 seen = centre_radiance(glass_stack_scene(panes));
     const float crossings = 2.0f * static_cast<float>(panes);  // camera ray and shadow ray
-    const glm::vec3 expected = lit * glm::vec3(1.0f, std::pow(0.8f, crossings),
-                                               std::pow(0.5f, crossings));
+    const glm::vec3 expected =
+        lit * glm::vec3(1.0f, std::pow(0.8f, crossings), std::pow(0.5f, crossings));
     // The G-buffer keeps albedo x tint as half floats (relative rounding <= 2^-11 = 4.9e-4).
     // Measured: at most 4.1e-4 (green, 2 panes), on both backends.
     for (int c = 0; c < 3; ++c) {

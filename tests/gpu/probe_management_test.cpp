@@ -324,7 +324,7 @@ TEST_F(ProbeManagementTest, BudgetCapsRaysAndReachesEveryActiveProbe) {
   p.counts = {4, 4, 4};
   p.rays_per_probe = 24;
   p.fixed_rays = 8;
-  const uint64_t per_probe = p.rays_per_probe;  // updates do not trace the fixed rays
+  const uint64_t per_probe = p.rays_per_probe;             // updates do not trace the fixed rays
   p.max_rays_per_update = 10 * per_probe + per_probe / 2;  // 10.5 probes' worth: 10 per update
   auto f = field(*gpu, p);
   ASSERT_TRUE(f);
