@@ -11,7 +11,8 @@
 #   deploy/soak.sh OUT_DIR [MINUTES]          default 60 minutes, binaries from build/
 #
 # Environment: SESSIONS (4), INTERVAL (60), CHURN (5), SIZE (160x90: lavapipe-friendly),
-# WARMUP_SAMPLES (10: the churn meets every configuration first), RSS_GROWTH_PERCENT (10), SERVER / CLIENT (build/ddgi-server, build/ddgi-client).
+# WARMUP_SAMPLES (10: the churn meets every configuration first), RSS_GROWTH_PERCENT (10),
+# SERVER / CLIENT (build/ddgi-server, build/ddgi-client), METRICS_PORT (9471).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:?usage: deploy/soak.sh OUT_DIR [MINUTES]}
