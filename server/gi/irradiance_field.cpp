@@ -104,31 +104,42 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   desc.timed_passes = kMaxTimedPasses;
   DDGI_ASSIGN_OR_RETURN(sets_, FieldSets::create(context_, scene_, desc, backend));
 
-  const std::vector<VkDescriptorSetLayout> update_layouts = sets_.update_layouts();
-  const uint32_t push = sizeof(gpu::FieldDispatch);
-  auto kernel = [&](const char* name, bool traces, glm::uvec3 workgroup = kLinearWorkgroup) {
-    return vk::Kernel::create(context_, {name, traces, update_layouts, push, workgroup}, backend);
-  };
-  // The lighting kernels' variants that read the shadow field (bound as set 3).
-  auto with_shadow_field = [&](const char* name) {
-    std::vector<VkDescriptorSetLayout> layouts = update_layouts;
-    layouts.push_back(shadow_field_->sampling_layout());
-    return vk::Kernel::create(context_, {name, true, layouts, push, kLinearWorkgroup}, backend);
-  };
-  DDGI_ASSIGN_OR_RETURN(trace_, kernel("field_trace", true));
-  DDGI_ASSIGN_OR_RETURN(blend_, kernel("field_blend", false, kProbeWorkgroup));
-  DDGI_ASSIGN_OR_RETURN(manage_, kernel("field_probes", false));
-  DDGI_ASSIGN_OR_RETURN(raw_trace_, kernel("field_raw_trace", true));
-  DDGI_ASSIGN_OR_RETURN(trace_surfels_, kernel("field_trace_surfels", true));
-  DDGI_ASSIGN_OR_RETURN(shade_, kernel("field_shade", true));
-  DDGI_ASSIGN_OR_RETURN(blend_irradiance_, kernel("field_blend_irradiance", false));
-  DDGI_ASSIGN_OR_RETURN(blend_distance_, kernel("field_blend_distance", false));
-  DDGI_ASSIGN_OR_RETURN(borders_, kernel("field_borders", false));
+  backend_ = backend;
+  DDGI_ASSIGN_OR_RETURN(trace_, update_kernel("field_trace", true, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(blend_, update_kernel("field_blend", false, kProbeWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(manage_, update_kernel("field_probes", false, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(raw_trace_, update_kernel("field_raw_trace", true, kLinearWorkgroup));
   if (shadow_field_) {
-    DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_, with_shadow_field("field_trace_shadow_field"));
-    DDGI_ASSIGN_OR_RETURN(shade_with_shadow_field_, with_shadow_field("field_shade_shadow_field"));
+    DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_,
+                          update_kernel("field_trace_shadow_field", true, kLinearWorkgroup, true));
   }
   return ok_status();
+}
+
+Status IrradianceField::create_split_kernels() {
+  DDGI_ASSIGN_OR_RETURN(trace_surfels_,
+                        update_kernel("field_trace_surfels", true, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(shade_, update_kernel("field_shade", true, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(blend_irradiance_,
+                        update_kernel("field_blend_irradiance", false, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(blend_distance_,
+                        update_kernel("field_blend_distance", false, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(borders_, update_kernel("field_borders", false, kLinearWorkgroup));
+  if (shadow_field_) {
+    DDGI_ASSIGN_OR_RETURN(shade_with_shadow_field_,
+                          update_kernel("field_shade_shadow_field", true, kLinearWorkgroup, true));
+  }
+  return ok_status();
+}
+
+Result<vk::Kernel> IrradianceField::update_kernel(const char* name, bool traces,
+                                                  glm::uvec3 workgroup,
+                                                  bool reads_shadow_field) const {
+  std::vector<VkDescriptorSetLayout> layouts = sets_.update_layouts();
+  // The lighting kernels' shadow-field variants bind it as set 3.
+  if (reads_shadow_field) layouts.push_back(shadow_field_->sampling_layout());
+  return vk::Kernel::create(
+      context_, {name, traces, layouts, uint32_t(sizeof(gpu::FieldDispatch)), workgroup}, backend_);
 }
 
 Status IrradianceField::create_resources() {
@@ -205,6 +216,7 @@ Status IrradianceField::create_surfels() {
 }
 
 Status IrradianceField::set_update_path(FieldUpdatePath path) {
+  if (path == FieldUpdatePath::kSplit && !shade_.valid()) DDGI_TRY(create_split_kernels());
   if (path == FieldUpdatePath::kSplit && !surfels_) DDGI_TRY(create_surfels());
   update_path_ = path;
   return ok_status();
@@ -435,7 +447,8 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
 }
 
 uint64_t IrradianceField::rays_per_update() const {
-  return last_update_probe_rays_ + last_update_shaded_rays_ * last_update_traced_lights_;
+  // Every blended ray is lit: one shadow ray per traced light each.
+  return last_update_probe_rays() * (1 + last_update_traced_lights_);
 }
 
 uint32_t IrradianceField::traced_lights(DirectMode direct_mode) const {
@@ -458,8 +471,6 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
           : static_cast<uint32_t>(
                 std::max<uint64_t>(1, params_.max_rays_per_update / params_.rays_per_probe));
   const ProbeScheduler::Window window = scheduler_.next_window(budget_probes);
-  last_update_probe_rays_ = uint64_t(window.count) * params_.rays_per_probe;
-  last_update_shaded_rays_ = uint64_t(window.count) * params_.rays_per_probe;
   last_update_traced_lights_ = traced_lights(direct_mode);
   last_update_rays_ = {window.start,      probe_list_size_, window.count, params_.rays_per_probe, 0,
                        params_.fixed_rays};

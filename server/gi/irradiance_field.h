@@ -109,7 +109,9 @@ class IrradianceField {
   Result<std::vector<gpu::ProbeState>> read_probe_states();
   // Probe rays the last recorded update traced (its blended rays: the fixed rays are traced
   // only by probe management).
-  uint64_t last_update_probe_rays() const { return last_update_probe_rays_; }
+  uint64_t last_update_probe_rays() const {
+    return uint64_t(last_update_rays_.probes) * last_update_rays_.per_probe;
+  }
   // Rays traced by the last update: probe rays plus one shadow ray per traced light per shaded
   // ray.
   uint64_t rays_per_update() const;
@@ -120,6 +122,11 @@ class IrradianceField {
   Status create_layouts_and_kernels(vk::TraceBackend backend);
   Status create_resources();
   Status create_surfels();
+  // The split path's kernels, built when it is first chosen (the service never uses it).
+  Status create_split_kernels();
+  // A kernel of the update set's layouts (+ the shadow field's sampling set as set 3).
+  Result<vk::Kernel> update_kernel(const char* name, bool traces, glm::uvec3 workgroup,
+                                   bool reads_shadow_field = false) const;
   gpu::FieldConstants constants(DirectMode direct_mode) const;
   // Lights whose visibility probe-ray hits trace in `direct_mode` (the rest read the shadow
   // field or are unshadowed).
@@ -172,6 +179,7 @@ class IrradianceField {
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
   FieldUpdatePath update_path_ = FieldUpdatePath::kFused;
+  vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
 
   vk::Buffer constants_;
   vk::Buffer probes_;
@@ -183,8 +191,6 @@ class IrradianceField {
   ProbeScheduler scheduler_;
   uint64_t seen_moves_ = 0;      // GpuScene::move_count() already handled
   LinearWork last_update_rays_;  // the blended rays of the last update (raw_trace_passes)
-  uint64_t last_update_probe_rays_ = 0;
-  uint64_t last_update_shaded_rays_ = 0;
   uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;

@@ -119,6 +119,8 @@ class Kernel {
   void dispatch(VkCommandBuffer cmd, std::span<const VkDescriptorSet> sets,
                 const void* push_constants, glm::uvec3 size) const;
   const std::string& name() const { return name_; }
+  // Created (not default-constructed or reset).
+  bool valid() const { return pipeline_ != VK_NULL_HANDLE; }
 
  private:
   Status create_compute(const KernelDesc& desc, const std::string& spirv_file);
