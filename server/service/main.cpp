@@ -2,6 +2,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -22,6 +23,8 @@ constexpr const char* kUsage = R"(usage: ddgi-server [flags]
 
 Serves the DDGI render service over gRPC (docs/service.md). Stops on SIGTERM or SIGINT:
 health turns NOT_SERVING, streams end with OK, the process exits within --shutdown-grace.
+If the GPU device is lost, every session ends with UNAVAILABLE naming the loss, health turns
+NOT_SERVING and the process exits with status 1, for its supervisor to restart it.
 
   --listen HOST:PORT        where to listen; port 0 picks a free one  [0.0.0.0:50051]
   --port-file FILE          write the port listened on to FILE (for scripts)
@@ -178,6 +181,11 @@ Result<vk::ContextOptions> context_options(const Flags& flags, uint64_t memory_b
   return options;
 }
 
+// The GPU device was lost (ServerOptions::on_device_lost): the handler sets the flag, then sends
+// the signal that wakes the main thread, which shuts the server down and exits non-zero.
+constexpr int kDeviceLostSignal = SIGUSR1;
+std::atomic<bool> g_device_lost{false};
+
 // Signals go to one thread that waits for them; every other thread (gRPC's, the frame loops)
 // inherits the blocked mask, so no handler ever runs inside a lock. Call before any thread starts.
 sigset_t block_stop_signals() {
@@ -185,6 +193,7 @@ sigset_t block_stop_signals() {
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, kDeviceLostSignal);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   return signals;
 }
@@ -196,13 +205,18 @@ void write_port_file(const std::string& path, int port) {
   std::rename((path + ".tmp").c_str(), path.c_str());  // readers never see half
 }
 
-// Waits for SIGTERM or SIGINT, then shuts `server` down; exits the process (code 3) when that
-// takes longer than the grace period allows.
+// Waits for SIGTERM or SIGINT, or for the GPU device to be lost, then shuts `server` down;
+// exits the process (code 3) when that takes longer than the grace period allows.
 void serve_until_stopped(Server& server, const sigset_t& signals,
                          std::chrono::milliseconds shutdown_grace) {
   int signal_number = 0;
-  sigwait(&signals, &signal_number);
-  LOG_INFO << "received " << (signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
+  do {
+    sigwait(&signals, &signal_number);
+  } while (signal_number == kDeviceLostSignal && !g_device_lost);  // not ours: ignored
+  LOG_INFO << "received "
+           << (signal_number == SIGTERM  ? "SIGTERM"
+               : signal_number == SIGINT ? "SIGINT"
+                                         : "the device-lost signal");
   // Whatever happens below, the process is gone a little after the grace period.
   const auto hard_limit = shutdown_grace + std::chrono::seconds(5);
   std::thread([hard_limit] {
@@ -226,7 +240,11 @@ Status run(int argc, char** argv) {
     return invalid_argument("unexpected argument '" + flags.positional()[0] + "' (see --help)");
   }
   DDGI_TRY(apply_log_level(flags));
-  DDGI_ASSIGN_OR_RETURN(const ServerOptions options, server_options(flags));
+  DDGI_ASSIGN_OR_RETURN(ServerOptions options, server_options(flags));
+  options.on_device_lost = [](const Error&) {
+    g_device_lost = true;
+    kill(getpid(), kDeviceLostSignal);  // wakes serve_until_stopped
+  };
   DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
   DDGI_ASSIGN_OR_RETURN(const vk::ContextOptions vulkan,
                         context_options(flags, options.limits.gpu_memory_budget_bytes));
@@ -239,6 +257,10 @@ Status run(int argc, char** argv) {
   std::fflush(stdout);
   serve_until_stopped(*server, signals, options.shutdown_grace);
   server.reset();
+  if (g_device_lost) {
+    // Sessions have ended with the loss as their status; the supervisor restarts the server.
+    return unavailable("the GPU device was lost; exiting so that the server is restarted");
+  }
   const uint32_t messages = context->validation_message_count();
   context.reset();
   if (messages > 0) {

@@ -83,6 +83,17 @@ Completion without_server_paths(const SceneLibrary& library, Completion done) {
 
 }  // namespace
 
+void RenderServiceImpl::refuse_new_work(std::string why) {
+  std::lock_guard<std::mutex> lock(refusal_mutex_);
+  if (refusal_.empty()) refusal_ = std::move(why);
+}
+
+Status RenderServiceImpl::refusal() const {
+  std::lock_guard<std::mutex> lock(refusal_mutex_);
+  if (refusal_.empty()) return ok_status();
+  return unavailable(refusal_);
+}
+
 RenderServiceImpl::RenderServiceImpl(vk::Context& context, const ServiceLimits& limits,
                                      SceneLibrary library, BearerAuth auth, Metrics& metrics,
                                      SessionRegistry& sessions)
@@ -206,7 +217,7 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
                                                            v1::SessionInfo* reply) {
   return unary(context, "CreateSession", "", [&](Completion& done) -> Status {
     if (request->scene().has_name()) done = without_server_paths(library_, std::move(done));
-    if (shutting_down_) return unavailable("the server is shutting down");
+    DDGI_TRY(refusal());
     DDGI_ASSIGN_OR_RETURN(
         SceneRequest scene,
         scene_request(request->scene(), request->warmup_updates(), request->has_warmup_updates()));
@@ -467,9 +478,7 @@ grpc::ServerWriteReactor<v1::Frame>* RenderServiceImpl::StreamFrames(
     return reactor;
   };
   if (grpc::Status denied = auth_.check(*context); !denied.ok()) return fail(denied);
-  if (shutting_down_) {
-    return fail(grpc::Status(grpc::StatusCode::UNAVAILABLE, "the server is shutting down"));
-  }
+  if (Status refused = refusal(); !refused.ok()) return fail(to_grpc(refused.error()));
   if (!std::isfinite(max_fps) || max_fps < 0.0 || max_fps > 1000.0) {
     return fail(to_grpc(invalid_argument("max_fps must be finite and in [0, 1000] (got " +
                                          std::to_string(max_fps) + ")")));

@@ -3,7 +3,7 @@
 // there; the reply is sent by the session when the command has been applied. No handler waits.
 #pragma once
 
-#include <atomic>
+#include <mutex>
 #include <string>
 
 #include "ddgi/v1/render_service.grpc.pb.h"
@@ -21,8 +21,9 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
   RenderServiceImpl(vk::Context& context, const ServiceLimits& limits, SceneLibrary library,
                     BearerAuth auth, Metrics& metrics, SessionRegistry& sessions);
 
-  // New sessions and streams are refused (UNAVAILABLE) from now on.
-  void begin_shutdown() { shutting_down_ = true; }
+  // New sessions and streams are refused (UNAVAILABLE, with `why`) from now on: the server is
+  // shutting down, or its GPU device was lost.
+  void refuse_new_work(std::string why);
 
   grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
                                           const v1::GetServerInfoRequest* request,
@@ -106,7 +107,10 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
   const BearerAuth auth_;
   Metrics& metrics_;
   SessionRegistry& sessions_;
-  std::atomic<bool> shutting_down_{false};
+  // Why new sessions and streams are refused; empty while they are not.
+  Status refusal() const;
+  mutable std::mutex refusal_mutex_;
+  std::string refusal_;
 };
 
 }  // namespace ddgi::service

@@ -87,12 +87,16 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
                        " (address in use, or not host:port?)");
   }
   server->server_->GetHealthCheckService()->SetServingStatus(true);
+  context.set_device_lost_handler(
+      [raw = server.get()](const Error& why) { raw->device_lost(why); });
 
   Metrics* metrics = &server->metrics_;
   metrics->add_gauge("ddgi_gpu_memory_bytes", "GPU memory held by all sessions.",
                      [&context] { return double(context.allocated_bytes()); });
   metrics->add_gauge("ddgi_gpu_memory_budget_bytes", "The GPU memory budget (0: the device's).",
                      [&context] { return double(context.memory_budget()); });
+  metrics->add_gauge("ddgi_gpu_device_lost", "1 once the GPU device was lost (restart needed).",
+                     [&context] { return context.device_lost() ? 1.0 : 0.0; });
   if (options.metrics_port >= 0) {
     DDGI_ASSIGN_OR_RETURN(
         server->metrics_http_,
@@ -113,8 +117,9 @@ bool Server::shutdown() {
   const auto start = std::chrono::steady_clock::now();
   LOG_INFO << "shutting down: health NOT_SERVING, closing sessions";
   server_->GetHealthCheckService()->SetServingStatus(false);
-  service_->begin_shutdown();
+  service_->refuse_new_work("the server is shutting down");
   sessions_->close_all();
+  context_.set_device_lost_handler(nullptr);
   bool in_time = sessions_->wait_for_loops(options_.shutdown_grace);
   if (!in_time) {
     LOG_WARNING << "frame loops still running after the shutdown grace period";
@@ -139,6 +144,20 @@ bool Server::shutdown() {
                   .count()
            << " ms";
   return in_time;
+}
+
+std::shared_ptr<grpc::Channel> Server::in_process_channel() {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(static_cast<int>(options_.limits.max_message_bytes));
+  return server_->InProcessChannel(args);
+}
+
+void Server::device_lost(const Error& why) {
+  LOG_ERROR << why.message << ": ending every session";
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  service_->refuse_new_work(why.message);
+  sessions_->close_all(why);
+  if (options_.on_device_lost) options_.on_device_lost(why);
 }
 
 Server::~Server() {

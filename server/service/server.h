@@ -33,6 +33,11 @@ struct ServerOptions {
   std::string metrics_address = "0.0.0.0";
   unsigned encode_threads = 2;
   std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
+  // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
+  // health NOT_SERVING, refused new work and ended every session with the loss as their status;
+  // on the thread that saw the loss, which it must not block. ddgi-server exits then, so its
+  // supervisor restarts it on a fresh device.
+  std::function<void(const Error& why)> on_device_lost;
   // Test-only: no flag sets it. See SessionRegistry::SessionLoadedHook.
   SessionRegistry::SessionLoadedHook test_session_loaded_hook;
 };
@@ -45,6 +50,8 @@ class Server {
   int port() const { return port_; }
   int metrics_port() const { return metrics_http_ ? metrics_http_->port() : -1; }
   Metrics& metrics() { return metrics_; }
+  // A channel to this server inside the process (no socket): the request fuzzer's.
+  std::shared_ptr<grpc::Channel> in_process_channel();
   SessionRegistry& sessions() { return *sessions_; }
 
   // Health NOT_SERVING, new sessions and streams refused, sessions closed (streams end with OK),
@@ -54,6 +61,8 @@ class Server {
 
  private:
   explicit Server(vk::Context& context) : context_(context) {}
+  // The device-lost handler (ServerOptions::on_device_lost says what it does).
+  void device_lost(const Error& why);
 
   vk::Context& context_;
   ServerOptions options_;

@@ -41,8 +41,8 @@ void Session::start(SceneRequest scene, v1::SessionInfo* reply, Completion done)
   loop_.start(shared_from_this(), env_.on_loop_exit);
 }
 
-void Session::stop(std::function<void()> on_stopped) {
-  loop_.stop(std::move(on_stopped));
+void Session::stop(std::function<void()> on_stopped, std::optional<Error> reason) {
+  loop_.stop(std::move(on_stopped), std::move(reason));
 }
 
 v1::SessionSummary Session::summary() const {

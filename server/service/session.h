@@ -85,9 +85,10 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   using AtlasDone = std::function<void(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>>)>;
   void dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone done);
 
-  // Ends the loop: queued commands fail with UNAVAILABLE, streams end with OK, GPU memory is
-  // freed, then `on_stopped` runs (on the loop thread).
-  void stop(std::function<void()> on_stopped);
+  // Ends the loop: queued commands fail with UNAVAILABLE, streams end with OK (or both with
+  // `reason`, when given: a lost device), GPU memory is freed, then `on_stopped` runs (on the
+  // loop thread).
+  void stop(std::function<void()> on_stopped, std::optional<Error> reason = std::nullopt);
 
  private:
   // One loop iteration's frames share one update of the fields: recorded with the first frame
@@ -118,7 +119,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void produce_frame(uint64_t index, const CommandStamp& last_applied) override;
   void after_iteration() override;
   void finish_frames() override;
-  void tear_down() override;
+  void tear_down(const std::optional<Error>& reason) override;
 
   // Frames (session_frames.cpp).
   // Submits a frame of every view someone waits for (into in_flight_).

@@ -40,10 +40,10 @@ void Session::after_iteration() {
   env_.context->collect_garbage();
 }
 
-void Session::tear_down() {
+void Session::tear_down(const std::optional<Error>& reason) {
   finish_frames();  // their waiters get their frames before the rest learn of the close
-  const Error closed = unavailable("session " + state_.id + " was closed");
-  state_.views.close_all(closed);
+  const Error closed = reason ? *reason : unavailable("session " + state_.id + " was closed");
+  state_.views.close_all(closed, reason.has_value());
   state_.one_offs.close_all(closed);
   state_.scene.reset();
   env_.context->collect_garbage();

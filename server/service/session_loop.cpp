@@ -43,9 +43,10 @@ void SessionLoop::enqueue_sync(bool changes_state, std::function<Status()> run, 
       changes_state, [run = std::move(run)](Completion finish) { finish(run()); }, std::move(done));
 }
 
-void SessionLoop::stop(std::function<void()> on_stopped) {
+void SessionLoop::stop(std::function<void()> on_stopped, std::optional<Error> reason) {
   std::lock_guard<std::mutex> lock(mutex_);
   stopping_ = true;
+  if (reason && !stop_reason_) stop_reason_ = std::move(reason);
   if (on_stopped) on_stopped_.push_back(std::move(on_stopped));
   wake_.notify_one();
 }
@@ -105,13 +106,15 @@ bool SessionLoop::frame_due() const {
 
 void SessionLoop::finish() {
   std::deque<Command> rest;
+  std::optional<Error> reason;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     rest.swap(queue_);
+    reason = stop_reason_;
   }
-  const Error closed = unavailable("session " + session_id_ + " was closed");
+  const Error closed = reason ? *reason : unavailable("session " + session_id_ + " was closed");
   for (Command& command : rest) command.done(closed);
-  owner_.tear_down();
+  owner_.tear_down(reason);
   std::vector<std::function<void()>> on_stopped;
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,9 @@ class SessionLoop {
     // After every iteration (commands, and a frame if one was due).
     virtual void after_iteration() = 0;
     // Once, after stop(): queued commands have failed; end streams and free everything.
-    virtual void tear_down() = 0;
+    // `reason`: why the session ended when it did not simply close (a lost device); streams
+    // then end with it instead of OK.
+    virtual void tear_down(const std::optional<Error>& reason) = 0;
   };
   using Run = std::function<void(Completion)>;  // on the loop thread; completes exactly once
 
@@ -65,9 +68,9 @@ class SessionLoop {
   void enqueue(bool changes_state, Run run, Completion done);
   // The same for commands that finish when `run` returns.
   void enqueue_sync(bool changes_state, std::function<Status()> run, Completion done);
-  // Ends the loop after the command running now: the rest fail with UNAVAILABLE, the owner
-  // tears down, then `on_stopped` runs (on the loop thread).
-  void stop(std::function<void()> on_stopped);
+  // Ends the loop after the command running now: the rest fail with UNAVAILABLE (or with
+  // `reason`, when given), the owner tears down, then `on_stopped` runs (on the loop thread).
+  void stop(std::function<void()> on_stopped, std::optional<Error> reason = std::nullopt);
 
   // On the loop thread: the command being applied (0 before the first).
   uint64_t applying_seq() const { return applying_seq_; }
@@ -100,6 +103,7 @@ class SessionLoop {
   std::deque<Command> queue_;
   uint64_t next_seq_ = 1;
   bool stopping_ = false;
+  std::optional<Error> stop_reason_;  // the first stop() that gave one
   std::vector<std::function<void()>> on_stopped_;
 
   // Owned by the loop thread.

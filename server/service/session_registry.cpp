@@ -29,7 +29,7 @@ Status SessionRegistry::create(SessionOptions options, SceneRequest scene, v1::S
   std::string id;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (closed_) return unavailable("the server is shutting down");
+    if (closed_) return unavailable(closed_message_);
     if (sessions_.size() >= env_.limits->max_sessions) {
       return resource_exhausted("the server already has " + std::to_string(sessions_.size()) +
                                 " sessions, the most allowed (--max-sessions " +
@@ -122,15 +122,16 @@ size_t SessionRegistry::size() const {
   return sessions_.size();
 }
 
-void SessionRegistry::close_all() {
+void SessionRegistry::close_all(std::optional<Error> reason) {
   std::map<std::string, std::shared_ptr<Session>> sessions;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (reason && !closed_) closed_message_ = reason->message;
     closed_ = true;
     sessions.swap(sessions_);
   }
   for (auto& [id, session] : sessions) {
-    if (session) session->stop(nullptr);
+    if (session) session->stop(nullptr, reason);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,9 @@ class SessionRegistry {
   std::vector<v1::SessionSummary> list() const;
   size_t size() const;
 
-  // Closes every session and refuses new ones.
-  void close_all();
+  // Closes every session and refuses new ones: "the server is shutting down", or `reason`
+  // (a lost device), which then also ends the sessions' streams and queued commands.
+  void close_all(std::optional<Error> reason = std::nullopt);
   // True when every frame loop ended within `timeout`.
   bool wait_for_loops(std::chrono::milliseconds timeout);
 
@@ -59,6 +61,7 @@ class SessionRegistry {
   std::map<std::string, std::shared_ptr<Session>> sessions_;
   size_t reserved_ = 0;  // sessions counted from CreateSession until they load or fail
   bool closed_ = false;
+  std::string closed_message_ = "the server is shutting down";  // what create() answers then
 };
 
 }  // namespace ddgi::service

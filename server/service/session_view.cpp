@@ -117,9 +117,10 @@ void ViewSet::detach(const std::shared_ptr<FrameStreamState>& stream) {
   for (const std::string& view_id : orphans) erase(view_id);
 }
 
-void ViewSet::close_all(const Error& error) {
+void ViewSet::close_all(const Error& error, bool streams_fail) {
+  const grpc::Status stream_end = streams_fail ? to_grpc(error) : grpc::Status::OK;
   for (auto& [view_id, view] : views_) {
-    for (auto& stream : view.streams) stream->finish(grpc::Status::OK);  // a clean end
+    for (auto& stream : view.streams) stream->finish(stream_end);
     for (auto& waiter : view.waiters) waiter(error);
     metrics_.views.fetch_sub(1);
   }

@@ -79,8 +79,9 @@ class ViewSet {
   void erase(const std::string& view_id);
   // Takes `stream` off every view; views made for it go with it.
   void detach(const std::shared_ptr<FrameStreamState>& stream);
-  // Teardown: streams end with OK, waiters get `error`, every view goes.
-  void close_all(const Error& error);
+  // Teardown: streams end with OK (with `error` when `streams_fail`), waiters get `error`,
+  // every view goes.
+  void close_all(const Error& error, bool streams_fail);
 
   std::map<std::string, SessionView>& all() { return views_; }
   const std::map<std::string, SessionView>& all() const { return views_; }

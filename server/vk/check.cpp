@@ -51,7 +51,9 @@ Error vk_error(VkResult result, const std::string& what) {
       result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY;
   std::string message = what + " failed: " + result_name(result) + " (" +
                         std::to_string(static_cast<int>(result)) + ")";
-  return out_of_memory ? resource_exhausted(message) : internal_error(message);
+  if (out_of_memory) return resource_exhausted(message);
+  if (result == VK_ERROR_DEVICE_LOST) return unavailable(message);
+  return internal_error(message);
 }
 
 void fatal(const std::string& message) {

@@ -12,7 +12,8 @@ namespace ddgi::vk {
 
 const char* result_name(VkResult result);
 
-// Out-of-memory results become RESOURCE_EXHAUSTED, everything else INTERNAL.
+// Out-of-memory results become RESOURCE_EXHAUSTED, a lost device UNAVAILABLE, everything else
+// INTERNAL.
 Error vk_error(VkResult result, const std::string& what);
 
 [[noreturn]] void fatal(const std::string& message);
@@ -22,6 +23,15 @@ Error vk_error(VkResult result, const std::string& what);
 #define VK_TRY(call)                                                                      \
   do {                                                                                    \
     VkResult vk_try_result_ = (call);                                                     \
+    if (vk_try_result_ != VK_SUCCESS) return ::ddgi::vk::vk_error(vk_try_result_, #call); \
+  } while (0)
+
+// VK_TRY for a call that a test build may make fail (vk::FaultSite, Context::injected_fault):
+// the injected result is reported as the call's own.
+#define VK_TRY_AT(context, site, call)                                                    \
+  do {                                                                                    \
+    VkResult vk_try_result_ = (context).injected_fault(site);                             \
+    if (vk_try_result_ == VK_SUCCESS) vk_try_result_ = (call);                            \
     if (vk_try_result_ != VK_SUCCESS) return ::ddgi::vk::vk_error(vk_try_result_, #call); \
   } while (0)
 

@@ -485,20 +485,81 @@ Status Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& reco
 }
 
 Result<uint64_t> Context::submit(const VkSubmitInfo& info, VkFence fence) {
-  // One queue, used by one thread at a time; only vkQueueSubmit waits here.
-  std::lock_guard<std::mutex> lock(queue_mutex_);
-  VK_TRY(vkQueueSubmit(queue_, 1, &info, fence));
-  std::lock_guard<std::mutex> serials(serial_mutex_);
-  const uint64_t serial = ++submitted_serial_;
-  pending_serials_.insert(serial);
-  return serial;
+  VkResult result = injected_fault(FaultSite::kQueueSubmit);
+  {
+    // One queue, used by one thread at a time; only vkQueueSubmit waits here.
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (device_lost_) return lose_device(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
+    if (result == VK_SUCCESS) result = vkQueueSubmit(queue_, 1, &info, fence);
+    if (result == VK_SUCCESS) {
+      std::lock_guard<std::mutex> serials(serial_mutex_);
+      const uint64_t serial = ++submitted_serial_;
+      pending_serials_.insert(serial);
+      return serial;
+    }
+  }
+  if (result == VK_ERROR_DEVICE_LOST) return lose_device(result, "vkQueueSubmit");
+  return vk_error(result, "vkQueueSubmit");
 }
 
 Status Context::wait(uint64_t serial, VkFence fence) {
-  VK_TRY(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
-  std::lock_guard<std::mutex> lock(serial_mutex_);
-  pending_serials_.erase(serial);
+  VkResult result = vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+  if (result == VK_SUCCESS) {
+    std::lock_guard<std::mutex> lock(serial_mutex_);
+    pending_serials_.erase(serial);
+  }
+  if (result == VK_SUCCESS) result = injected_fault(FaultSite::kFenceWait);
+  if (result == VK_ERROR_DEVICE_LOST) return lose_device(result, "vkWaitForFences");
+  if (result != VK_SUCCESS) return vk_error(result, "vkWaitForFences");
   return ok_status();
+}
+
+Error Context::lose_device(VkResult result, const char* call) {
+  std::function<void(const Error&)> on_lost;
+  Error error = unavailable("");
+  {
+    std::lock_guard<std::mutex> lock(fault_mutex_);
+    if (device_lost_error_) return *device_lost_error_;
+    device_lost_error_ = unavailable(std::string("the GPU device was lost (") + call + ": " +
+                                     result_name(result) + "); the server must be restarted");
+    device_lost_ = true;
+    error = *device_lost_error_;
+    on_lost = on_device_lost_;
+  }
+  if (on_lost) on_lost(error);
+  return error;
+}
+
+void Context::set_device_lost_handler(std::function<void(const Error& why)> on_lost) {
+  std::lock_guard<std::mutex> lock(fault_mutex_);
+  on_device_lost_ = std::move(on_lost);
+}
+
+void Context::set_test_fault_hook(FaultHook hook) {
+  std::lock_guard<std::mutex> lock(fault_mutex_);
+  fault_hook_ = std::move(hook);
+}
+
+VkResult Context::injected_fault(FaultSite site) const {
+  FaultHook hook;
+  {
+    std::lock_guard<std::mutex> lock(fault_mutex_);
+    if (!fault_hook_) return VK_SUCCESS;
+    hook = fault_hook_;
+  }
+  return hook(site);
+}
+
+const char* fault_site_name(FaultSite site) {
+  switch (site) {
+    case FaultSite::kQueueSubmit:
+      return "queue submit";
+    case FaultSite::kFenceWait:
+      return "fence wait";
+    case FaultSite::kAllocateMemory:
+      return "memory allocation";
+  }
+  return "?";
 }
 
 uint64_t Context::completed_serial() const {

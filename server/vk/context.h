@@ -21,6 +21,14 @@ namespace ddgi::vk {
 
 class CommandSlot;
 
+// Where a test build may make a Vulkan call fail (Context::set_test_fault_hook): the queue
+// submission and the fence wait every frame and update go through, and every memory allocation.
+enum class FaultSite { kQueueSubmit, kFenceWait, kAllocateMemory };
+const char* fault_site_name(FaultSite site);
+// Returns the result the call at `site` reports instead of its own; VK_SUCCESS: no fault. Runs
+// on whichever thread makes the call, holding no lock of the context's.
+using FaultHook = std::function<VkResult(FaultSite site)>;
+
 // How rays are traced: inline ray queries in compute shaders, or ray-tracing pipelines.
 enum class TraceBackend { kRayQuery, kPipeline };
 const char* backend_name(TraceBackend backend);
@@ -115,6 +123,20 @@ class Context {
   // submission counts as completed (deferred destruction). Every submission must be waited for.
   Status wait(uint64_t serial, VkFence fence);
 
+  // Device loss. The first VK_ERROR_DEVICE_LOST from a submission or a fence wait marks the
+  // device lost for good: every later submit() fails at once with the same UNAVAILABLE error,
+  // and `on_lost` (set once, by the server) runs on the thread that saw it. A lost device does
+  // not come back; its owner ends what uses it and the process is restarted.
+  bool device_lost() const { return device_lost_.load(); }
+  void set_device_lost_handler(std::function<void(const Error& why)> on_lost);
+
+  // Test-only fault injection: `hook` is asked before every call at a FaultSite (after the
+  // real wait, at kFenceWait, so the injected result leaves no submission pending). An empty
+  // hook turns injection off. Production code never sets one.
+  void set_test_fault_hook(FaultHook hook);
+  // The injected result for a call at `site` (VK_SUCCESS when none is injected).
+  VkResult injected_fault(FaultSite site) const;
+
   // Deferred destruction: `destroy` runs once the GPU has finished every submission made
   // before this call. Objects can be dropped at any time without waiting for the GPU.
   void defer_destroy(std::function<void()> destroy);
@@ -184,6 +206,14 @@ class Context {
 
   std::atomic<uint64_t> allocated_bytes_{0};
   uint64_t memory_budget_ = 0;
+
+  // The error every submission after a device loss gets; records the loss once.
+  Error lose_device(VkResult result, const char* call);
+  std::atomic<bool> device_lost_{false};
+  mutable std::mutex fault_mutex_;  // guards the two below
+  std::function<void(const Error&)> on_device_lost_;
+  std::optional<Error> device_lost_error_;
+  FaultHook fault_hook_;
 };
 
 }  // namespace ddgi::vk

@@ -52,7 +52,8 @@ Result<Buffer> Buffer::create(Context& context, VkDeviceSize size, VkBufferUsage
   alloc.pNext = &flags;
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex = type;
-  VK_TRY(vkAllocateMemory(context.device(), &alloc, nullptr, &buffer.memory_));
+  VK_TRY_AT(context, FaultSite::kAllocateMemory,
+            vkAllocateMemory(context.device(), &alloc, nullptr, &buffer.memory_));
   VK_TRY(vkBindBufferMemory(context.device(), buffer.buffer_, buffer.memory_, 0));
   if (memory_usage != MemoryUsage::kDeviceLocal) {
     VK_TRY(vkMapMemory(context.device(), buffer.memory_, 0, VK_WHOLE_SIZE, 0, &buffer.mapped_));
@@ -127,7 +128,8 @@ Result<Image> Image::create_2d(Context& context, uint32_t width, uint32_t height
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = requirements.size;
   alloc.memoryTypeIndex = type;
-  VK_TRY(vkAllocateMemory(context.device(), &alloc, nullptr, &image.memory_));
+  VK_TRY_AT(context, FaultSite::kAllocateMemory,
+            vkAllocateMemory(context.device(), &alloc, nullptr, &image.memory_));
   VK_TRY(vkBindImageMemory(context.device(), image.image_, image.memory_, 0));
 
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};

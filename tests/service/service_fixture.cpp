@@ -42,7 +42,8 @@ service::ServerOptions test_server_options() {
 }
 
 void ServiceTest::SetUp() {
-  vk::Context& context = service_context();
+  vulkan_ = &vulkan();
+  vk::Context& context = *vulkan_;
   validation_before_ = context.validation_message_count();
   service::ServerOptions options = test_server_options();
   configure(options);
@@ -62,7 +63,8 @@ void ServiceTest::TearDown() {
     EXPECT_TRUE(server_->shutdown()) << "the server did not shut down in time";
   }
   server_.reset();
-  vk::Context& context = service_context();
+  if (!vulkan_) return;
+  vk::Context& context = *vulkan_;
   context.collect_garbage();
   EXPECT_EQ(context.allocated_bytes(), 0u) << "GPU memory still held after every session closed";
   EXPECT_EQ(context.validation_message_count(), validation_before_)

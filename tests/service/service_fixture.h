@@ -35,6 +35,8 @@ class ServiceTest : public ::testing::Test {
   void TearDown() override;
   // Tests override this to change limits, auth or TLS before the server starts.
   virtual void configure(service::ServerOptions&) {}
+  // The Vulkan context the server runs on: the shared one, or a test's own (one it breaks).
+  virtual vk::Context& vulkan() { return service_context(); }
 
   std::unique_ptr<grpc::ClientContext> context(double deadline_seconds = 60.0) const;
   // A session on cornell_box with the small test field; fails the test when it cannot.
@@ -61,6 +63,7 @@ class ServiceTest : public ::testing::Test {
 
  private:
   std::unique_ptr<service::Server> server_;
+  vk::Context* vulkan_ = nullptr;
   uint32_t validation_before_ = 0;
 };
 
