@@ -301,7 +301,7 @@ ParamSpec<P> choice(std::string name, std::string doc, std::optional<std::string
   std::underlying_type_t<E> unnamed = 0;
   for (const auto& [word, value] : names) {
     unnamed = std::max(unnamed, std::underlying_type_t<E>(std::underlying_type_t<E>(value) + 1));
-    spec.examples.push_back({word, [put, value](P& p) { put(p, value); }, ""});
+    spec.examples.push_back({word, [put, v = value](P& p) { put(p, v); }, ""});
   }
   if (none) spec.examples.push_back({*none, [put](P& p) { put(p, std::nullopt); }, ""});
   spec.examples.push_back(

@@ -53,7 +53,11 @@ void Session::tear_down(const std::optional<Error>& reason) {
 
 void Session::render_views(const std::shared_ptr<FrameBatch>& batch) {
   std::vector<std::string> failed;
-  for (auto& [view_id, view] : state_.views.all()) {
+  for (auto& entry : state_.views.all()) {
+    // Named references, not a structured binding: the lambda below captures them (C++20
+    // allows capturing bindings, clang 14 does not).
+    const std::string& view_id = entry.first;
+    SessionView& view = entry.second;
     view.drop_ended_streams();
     if (view.streams.empty() && view.waiters.empty()) continue;
     if (view.resized()) finish_frames();  // its targets go: the budget then sees the new ones

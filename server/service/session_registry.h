@@ -59,7 +59,6 @@ class SessionRegistry {
   std::shared_ptr<LoopTracker> loops_ = std::make_shared<LoopTracker>();
   mutable std::mutex mutex_;
   std::map<std::string, std::shared_ptr<Session>> sessions_;
-  size_t reserved_ = 0;  // sessions counted from CreateSession until they load or fail
   bool closed_ = false;
   std::string closed_message_ = "the server is shutting down";  // what create() answers then
 };
