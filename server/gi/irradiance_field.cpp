@@ -108,7 +108,6 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   DDGI_ASSIGN_OR_RETURN(trace_, update_kernel("field_trace", true, kLinearWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_, update_kernel("field_blend", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(manage_, update_kernel("field_probes", false, kLinearWorkgroup));
-  DDGI_ASSIGN_OR_RETURN(raw_trace_, update_kernel("field_raw_trace", true, kLinearWorkgroup));
   if (shadow_field_) {
     DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_,
                           update_kernel("field_trace_shadow_field", true, kLinearWorkgroup, true));
@@ -516,11 +515,14 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
                   {&irradiance_, &distance_}));
 }
 
-std::vector<vk::Pass> IrradianceField::raw_trace_passes() const {
+Result<std::vector<vk::Pass>> IrradianceField::raw_trace_passes() {
+  if (!raw_trace_.valid()) {
+    DDGI_ASSIGN_OR_RETURN(raw_trace_, update_kernel("field_raw_trace", true, kLinearWorkgroup));
+  }
   vk::Pass pass = with_access(linear_pass("field raw trace", raw_trace_, last_update_rays_),
                               {&probes_, &probe_list_}, {&rays_});
   pass.group = vk::PassGroup::kBaseline;
-  return {pass};
+  return std::vector<vk::Pass>{pass};
 }
 
 Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, DirectMode direct_mode) {

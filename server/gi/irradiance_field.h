@@ -78,8 +78,9 @@ class IrradianceField {
   FieldUpdatePath update_path() const { return update_path_; }
   // The benchmark's baseline: the last update's blended rays traced again by a kernel that only
   // records hit distances (shaders/gi/field_raw_trace.glsl). It overwrites the ray buffer,
-  // which the next update writes before reading.
-  std::vector<vk::Pass> raw_trace_passes() const;
+  // which the next update writes before reading. Its kernel is built on the first call: only
+  // the benchmark asks.
+  Result<std::vector<vk::Pass>> raw_trace_passes();
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
   // Converges a new field quickly: three quarters of `count` updates at hysteresis <= 0.5, so

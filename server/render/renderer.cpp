@@ -76,10 +76,6 @@ Status Renderer::create_kernels() {
       primary_, vk::Kernel::create(
                     context_, {"primary", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
   DDGI_ASSIGN_OR_RETURN(
-      primary_raw_trace_,
-      vk::Kernel::create(
-          context_, {"primary_raw_trace", true, layouts, sizeof(gpu::PrimaryConstants)}, backend_));
-  DDGI_ASSIGN_OR_RETURN(
       direct_, vk::Kernel::create(context_, {"direct", true, layouts, sizeof(gpu::DirectConstants)},
                                   backend_));
   if (shadow_field_) {
@@ -233,8 +229,16 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
   return passes;
 }
 
-std::vector<vk::Pass> Renderer::raw_primary_passes(const FrameSettings& settings,
-                                                   const FrameTarget& target) const {
+Result<std::vector<vk::Pass>> Renderer::raw_primary_passes(const FrameSettings& settings,
+                                                           const FrameTarget& target) {
+  if (!primary_raw_trace_.valid()) {
+    const std::vector<VkDescriptorSetLayout> layouts = {scene_.layout(), frame_layout_.handle()};
+    DDGI_ASSIGN_OR_RETURN(
+        primary_raw_trace_,
+        vk::Kernel::create(context_,
+                           {"primary_raw_trace", true, layouts, sizeof(gpu::PrimaryConstants)},
+                           backend_));
+  }
   vk::Pass pass;
   pass.name = "primary raw trace";
   pass.group = vk::PassGroup::kBaseline;
@@ -243,7 +247,7 @@ std::vector<vk::Pass> Renderer::raw_primary_passes(const FrameSettings& settings
   pass.push_constants = vk::Pass::push(frame_constants(settings, field_).primary);
   pass.size = {settings.width, settings.height, 1};
   pass.writes = {&target.gbuffer()};
-  return {pass};
+  return std::vector<vk::Pass>{pass};
 }
 
 Result<FrameResult> Renderer::render(const FrameSettings& settings,

@@ -115,8 +115,9 @@ class Renderer {
                                      const FrameTarget& target) const;
   // ddgi-bench's baseline for primary visibility: the frame's camera rays traced by a kernel
   // that only records hit distances (into the G-buffer, which the frame's primary pass writes).
-  std::vector<vk::Pass> raw_primary_passes(const FrameSettings& settings,
-                                           const FrameTarget& target) const;
+  // Its kernel is built on the first call: only the benchmark asks.
+  Result<std::vector<vk::Pass>> raw_primary_passes(const FrameSettings& settings,
+                                                   const FrameTarget& target);
   vk::TraceBackend backend() const { return backend_; }
 
  private:

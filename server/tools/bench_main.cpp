@@ -175,10 +175,11 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
   for (int64_t f = -job.warmup; f < job.frames; ++f) {
     DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> before,
                           gi->frame_update(job.settings.direct_mode, {}));
-    for (vk::Pass& p : field.raw_trace_passes()) before.push_back(std::move(p));
-    for (vk::Pass& p : renderer->raw_primary_passes(job.settings, *target)) {
-      before.push_back(std::move(p));
-    }
+    DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> raw_field, field.raw_trace_passes());
+    DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> raw_primary,
+                          renderer->raw_primary_passes(job.settings, *target));
+    for (vk::Pass& p : raw_field) before.push_back(std::move(p));
+    for (vk::Pass& p : raw_primary) before.push_back(std::move(p));
     DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, *target, before));
     if (f >= 0) table.add(frame.pass_times);
   }

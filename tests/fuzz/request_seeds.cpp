@@ -75,8 +75,7 @@ const google::protobuf::ServiceDescriptor& service() {
 }
 
 const google::protobuf::Descriptor* request_type(std::string_view method) {
-  const google::protobuf::MethodDescriptor* found =
-      service().FindMethodByName(std::string(method));
+  const google::protobuf::MethodDescriptor* found = service().FindMethodByName(std::string(method));
   return found ? found->input_type() : nullptr;
 }
 
