@@ -550,18 +550,6 @@ VkResult Context::injected_fault(FaultSite site) const {
   return hook(site);
 }
 
-const char* fault_site_name(FaultSite site) {
-  switch (site) {
-    case FaultSite::kQueueSubmit:
-      return "queue submit";
-    case FaultSite::kFenceWait:
-      return "fence wait";
-    case FaultSite::kAllocateMemory:
-      return "memory allocation";
-  }
-  return "?";
-}
-
 uint64_t Context::completed_serial() const {
   std::lock_guard<std::mutex> lock(serial_mutex_);
   return pending_serials_.empty() ? submitted_serial_ : *pending_serials_.begin() - 1;

@@ -24,7 +24,6 @@ class CommandSlot;
 // Where a test build may make a Vulkan call fail (Context::set_test_fault_hook): the queue
 // submission and the fence wait every frame and update go through, and every memory allocation.
 enum class FaultSite { kQueueSubmit, kFenceWait, kAllocateMemory };
-const char* fault_site_name(FaultSite site);
 // Returns the result the call at `site` reports instead of its own; VK_SUCCESS: no fault. Runs
 // on whichever thread makes the call, holding no lock of the context's.
 using FaultHook = std::function<VkResult(FaultSite site)>;
