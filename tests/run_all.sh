@@ -12,7 +12,7 @@ cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" --timeout 900
 if [ "${SANITIZERS:-1}" != 0 ]; then
   tests/sanitize/run_sanitizers.sh asan
-  tests/fuzz/run_fuzz.sh "${FUZZ_SECONDS:-60}"
+  tests/fuzz/run_fuzz.sh "${FUZZ_SECONDS:-45}"
   tests/sanitize/run_sanitizers.sh tsan
 fi
 echo "all tests passed"

@@ -21,6 +21,11 @@ which="${1:-all}"
 # frames. The parameterised cases run on the ray-query backend only (/0): lavapipe compiles
 # ray-tracing pipelines slowly, and the host code under test is the same.
 gpu_filter="${GPU_FILTER:-RenderTest.*:FieldTest.*:ShadowFieldTest.*:PipelinedFramesTest.*:*MaterialsTest.*/0:*FurnaceExtremesTest.*/0}"
+# The service tests where threads meet (session loops, encoder pool, stream reactors, one-off
+# frames, shutdown, the metrics endpoint, GPU faults), to keep CI within its time; the rest
+# (validation, auth, limits) run single requests on the same paths. TSAN_FILTER='*' runs all.
+tsan_filter="E2eTest.*:PipelinedFramesTest.*:PacedPipelineTest.*:MultiViewTest.*:OneOff*:\
+AbandonedSessionTest.*:GpuFaultTest.*:MetricsHttpTest.*:ShutdownTest.*:AtlasChunkingTest.*"
 unit_tests=(ddgi_core_unit_tests ddgi_gi_unit_tests ddgi_image_tests ddgi_scene_tests
             ddgi_vk_unit_tests)
 
@@ -62,7 +67,7 @@ tsan() {
   "${here}/configure.sh" "${build}" thread
   ninja -C "${build}" -j"${jobs}" ddgi_service_tests
   export TSAN_OPTIONS="suppressions=${here}/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
-  run_sharded "${build}" ddgi_service_tests "${TSAN_FILTER:--MemoryReturnTest.*}" 2
+  run_sharded "${build}" ddgi_service_tests "${TSAN_FILTER:-${tsan_filter}}" 2
 }
 
 case "${which}" in
