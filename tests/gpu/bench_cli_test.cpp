@@ -1,43 +1,26 @@
 // The ddgi-bench executable on a tiny configuration: its table has a row per update path with
 // the raw-ray baselines (timed in the same submissions, kernels built only for the benchmark)
 // and ratios that follow from the printed times; bad flags are refused by name.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "tests/gpu/cli_run.h"
+
 namespace ddgi::test {
 namespace {
 
-struct BenchRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-BenchRun bench(const std::string& arguments) {
+CliRun bench(const std::string& arguments) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("ddgi-bench-cli-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const std::string command = std::string("cd '") + DDGI_SOURCE_DIR + "' && '" + DDGI_BENCH_EXE +
-                              "' " + arguments + " >'" + (dir / "out.txt").string() + "' 2>'" +
-                              (dir / "err.txt").string() + "'";
-  const int status = std::system(command.c_str());
-  BenchRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out.txt"),
-               slurp(dir / "err.txt")};
+  CliRun run = run_cli(DDGI_BENCH_EXE, arguments, dir);
   std::filesystem::remove_all(dir);
   return run;
 }
@@ -76,7 +59,7 @@ double cell(const std::string& out, const std::string& path, const std::string& 
 }
 
 TEST(BenchCliTest, EveryPathHasItsRawBaselineAndRatios) {
-  const BenchRun run = bench(
+  const CliRun run = bench(
       "scenes/cornell_box.gltf --width 32 --height 24 --frames 3 --warmup 1 --rays 16 "
       "--grids 2x2x2 --paths fused,split");
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -102,11 +85,11 @@ TEST(BenchCliTest, EveryPathHasItsRawBaselineAndRatios) {
 }
 
 TEST(BenchCliTest, BadFlagsAreNamed) {
-  const BenchRun paths = bench("scenes/cornell_box.gltf --paths fused,bogus");
+  const CliRun paths = bench("scenes/cornell_box.gltf --paths fused,bogus");
   EXPECT_NE(paths.exit_code, 0);
   EXPECT_NE(paths.err.find("--paths: 'bogus' is not fused or split"), std::string::npos)
       << paths.err;
-  const BenchRun rays = bench("scenes/cornell_box.gltf --rays 0");
+  const CliRun rays = bench("scenes/cornell_box.gltf --rays 0");
   EXPECT_NE(rays.exit_code, 0);
   EXPECT_NE(rays.err.find("rays_per_probe must be in [1, 1024] (got 0)"), std::string::npos)
       << rays.err;

@@ -1,6 +1,5 @@
 // The ddgi-render executable, as a user runs it (the README's command without a server): the
 // default scene to a PNG with GI, its per-pass table, and clear errors for bad input.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -14,21 +13,10 @@
 #include <gtest/gtest.h>
 
 #include "encode/png.h"
+#include "tests/gpu/cli_run.h"
 
 namespace ddgi::test {
 namespace {
-
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 class RenderCliTest : public ::testing::Test {
  protected:
@@ -41,12 +29,7 @@ class RenderCliTest : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   CliRun render(const std::string& arguments) const {
-    const std::string command = std::string("cd '") + DDGI_SOURCE_DIR + "' && '" + DDGI_RENDER_EXE +
-                                "' " + arguments + " >'" + (dir_ / "out.txt").string() + "' 2>'" +
-                                (dir_ / "err.txt").string() + "'";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"),
-            slurp(dir_ / "err.txt")};
+    return run_cli(DDGI_RENDER_EXE, arguments, dir_);
   }
 
   std::filesystem::path dir_;
