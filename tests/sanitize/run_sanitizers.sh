@@ -74,7 +74,7 @@ tsan() {
 second_deadlock_stack=1:log_path=${build}/tsan-report"
   run_sharded "${build}" ddgi_service_tests "${TSAN_FILTER:-${tsan_filter}}" 2
   shopt -s nullglob
-  python3 "${here}/tsan_ours.py" ddgi_service_tests "${build}"/tsan-report.*
+  python3 "${here}/tsan_ours.py" ddgi_service_tests,ddgi-server "${build}"/tsan-report.*
 }
 
 case "${which}" in
