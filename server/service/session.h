@@ -119,7 +119,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void produce_frame(uint64_t index, const CommandStamp& last_applied) override;
   void after_iteration() override;
   void finish_frames() override;
-  void tear_down(const std::optional<Error>& reason) override;
+  void tear_down(const Error& why, bool failed) override;
 
   // Frames (session_frames.cpp).
   // Submits a frame of every view someone waits for (into in_flight_).

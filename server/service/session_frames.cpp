@@ -40,11 +40,10 @@ void Session::after_iteration() {
   env_.context->collect_garbage();
 }
 
-void Session::tear_down(const std::optional<Error>& reason) {
+void Session::tear_down(const Error& why, bool failed) {
   finish_frames();  // their waiters get their frames before the rest learn of the close
-  const Error closed = reason ? *reason : unavailable("session " + state_.id + " was closed");
-  state_.views.close_all(closed, reason.has_value());
-  state_.one_offs.close_all(closed);
+  state_.views.close_all(why, failed);
+  state_.one_offs.close_all(why);
   state_.scene.reset();
   env_.context->collect_garbage();
   env_.metrics->sessions.fetch_sub(1);

@@ -114,7 +114,7 @@ void SessionLoop::finish() {
   }
   const Error closed = reason ? *reason : unavailable("session " + session_id_ + " was closed");
   for (Command& command : rest) command.done(closed);
-  owner_.tear_down(reason);
+  owner_.tear_down(closed, reason.has_value());
   std::vector<std::function<void()>> on_stopped;
   {
     std::lock_guard<std::mutex> lock(mutex_);

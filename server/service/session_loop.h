@@ -50,10 +50,10 @@ class SessionLoop {
     virtual void finish_frames() = 0;
     // After every iteration (commands, and a frame if one was due).
     virtual void after_iteration() = 0;
-    // Once, after stop(): queued commands have failed; end streams and free everything.
-    // `reason`: why the session ended when it did not simply close (a lost device); streams
-    // then end with it instead of OK.
-    virtual void tear_down(const std::optional<Error>& reason) = 0;
+    // Once, after stop(): queued commands have failed with `why`; end streams and free
+    // everything. `failed`: the session did not simply close (a lost device), so its streams
+    // end with `why` instead of OK.
+    virtual void tear_down(const Error& why, bool failed) = 0;
   };
   using Run = std::function<void(Completion)>;  // on the loop thread; completes exactly once
 

@@ -23,10 +23,7 @@ class GpuFaultTest : public ServiceTest {
   }
   vk::Context& vulkan() override {
     if (!context_) {
-      vk::ContextOptions options;
-      options.validation = true;
-      options.memory_budget_bytes = kTestGpuBudget;
-      auto created = vk::Context::create(options);
+      auto created = create_service_context();
       if (!created.ok()) {
         ADD_FAILURE() << "cannot create a Vulkan context: " << created.error().message;
         return service_context();

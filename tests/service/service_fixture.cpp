@@ -7,12 +7,16 @@
 
 namespace ddgi::test {
 
+Result<std::unique_ptr<vk::Context>> create_service_context() {
+  vk::ContextOptions options;
+  options.validation = true;
+  options.memory_budget_bytes = kTestGpuBudget;
+  return vk::Context::create(options);
+}
+
 vk::Context& service_context() {
   static std::unique_ptr<vk::Context> context = [] {
-    vk::ContextOptions options;
-    options.validation = true;
-    options.memory_budget_bytes = kTestGpuBudget;
-    auto created = vk::Context::create(options);
+    auto created = create_service_context();
     if (!created.ok()) {
       std::fprintf(stderr, "cannot create a Vulkan context: %s\n", created.error().message.c_str());
       std::abort();

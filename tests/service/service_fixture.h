@@ -24,6 +24,9 @@ namespace ddgi::test {
 // the grid the budget test asks for.
 inline constexpr uint64_t kTestGpuBudget = 256ull << 20;
 
+// A new Vulkan context as the service tests use it: validation on, the test budget.
+Result<std::unique_ptr<vk::Context>> create_service_context();
+// The one the tests share (aborts when there is none).
 vk::Context& service_context();
 
 // A test server's options: small limits so every limit can be hit cheaply.
