@@ -22,32 +22,60 @@ struct TjFreer {
 // JPEG stores dimensions in 16 bits.
 constexpr uint32_t kMaxJpegDimension = 65535;
 
-}  // namespace
-
-Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality, JpegChroma chroma) {
+// What both encoders check first.
+Status check_jpeg_input(uint32_t width, uint32_t height, int quality) {
   if (quality < 1 || quality > 100) {
     return invalid_argument("JPEG quality must be in 1..100, got " + std::to_string(quality));
   }
-  DDGI_TRY(validate(image));
-  if (image.width > kMaxJpegDimension || image.height > kMaxJpegDimension) {
-    return invalid_argument("JPEG cannot hold a " + size_string(image.width, image.height) +
+  if (width > kMaxJpegDimension || height > kMaxJpegDimension) {
+    return invalid_argument("JPEG cannot hold a " + size_string(width, height) +
                             " image (65535 pixels per side at most)");
   }
+  return ok_status();
+}
+
+// Runs one TurboJPEG compression (`compress` is called with the handle and the output
+// pointers) and returns its bytes.
+template <typename Compress>
+Result<std::vector<uint8_t>> compress_with(Compress compress) {
   TjHandle handle(tjInitCompress());
   if (!handle)
     return internal_error(std::string("tjInitCompress failed: ") + tjGetErrorStr2(nullptr));
-
   unsigned char* raw_output = nullptr;
   unsigned long output_size = 0;
-  const int subsampling = chroma == JpegChroma::k444 ? TJSAMP_444 : TJSAMP_420;
-  const int status = tjCompress2(handle.get(), image.pixels.data(), static_cast<int>(image.width),
-                                 0, static_cast<int>(image.height), TJPF_RGBA, &raw_output,
-                                 &output_size, subsampling, quality, 0);
+  const int status = compress(handle.get(), &raw_output, &output_size);
   std::unique_ptr<unsigned char, TjFreer> output(raw_output);
   if (status != 0) {
     return internal_error(std::string("JPEG encoding failed: ") + tjGetErrorStr2(handle.get()));
   }
   return std::vector<uint8_t>(output.get(), output.get() + output_size);
+}
+
+}  // namespace
+
+Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality, JpegChroma chroma) {
+  DDGI_TRY(check_jpeg_input(image.width, image.height, quality));
+  DDGI_TRY(validate(image));
+  const int subsampling = chroma == JpegChroma::k444 ? TJSAMP_444 : TJSAMP_420;
+  return compress_with([&](tjhandle handle, unsigned char** output, unsigned long* size) {
+    return tjCompress2(handle, image.pixels.data(), static_cast<int>(image.width), 0,
+                       static_cast<int>(image.height), TJPF_RGBA, output, size, subsampling,
+                       quality, 0);
+  });
+}
+
+Result<std::vector<uint8_t>> encode_jpeg(const ImageYuv420& image, int quality) {
+  DDGI_TRY(check_jpeg_input(image.width, image.height, quality));
+  DDGI_TRY(validate(image));
+  const uint8_t* y = image.bytes.data();
+  const unsigned char* planes[3] = {y, y + image.cb_offset, y + image.cr_offset};
+  const int strides[3] = {static_cast<int>(image.y_stride), static_cast<int>(image.chroma_stride),
+                          static_cast<int>(image.chroma_stride)};
+  return compress_with([&](tjhandle handle, unsigned char** output, unsigned long* size) {
+    return tjCompressFromYUVPlanes(handle, planes, static_cast<int>(image.width), strides,
+                                   static_cast<int>(image.height), TJSAMP_420, output, size,
+                                   quality, 0);
+  });
 }
 
 Result<ImageRgba8> decode_jpeg(std::span<const uint8_t> bytes) {

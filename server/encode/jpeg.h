@@ -18,6 +18,9 @@ enum class JpegChroma { k420, k444 };
 Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality,
                                          JpegChroma chroma = JpegChroma::k420);
 
+// The same from planes already in JPEG's colour space (no conversion, 4:2:0 chroma).
+Result<std::vector<uint8_t>> encode_jpeg(const ImageYuv420& image, int quality);
+
 // Any baseline/progressive JPEG -> RGBA with alpha 255; refuses images over kMaxDecodePixels.
 Result<ImageRgba8> decode_jpeg(std::span<const uint8_t> bytes);
 

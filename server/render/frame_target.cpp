@@ -11,6 +11,32 @@ namespace {
 // Field updates + shadow-field updates (up to 64 each per frame) + frame passes.
 constexpr uint32_t kMaxTimedPasses = 5 * 64 + 4 * 64 + 8;
 
+struct BufferCopy {
+  const vk::Buffer* from;
+  const vk::Buffer* to;  // host-visible, at least as large
+};
+
+// One pass copying whole buffers to the host.
+vk::Pass readback(const std::vector<BufferCopy>& copies) {
+  vk::Pass pass;
+  pass.name = "readback";
+  pass.group = vk::PassGroup::kReadback;
+  std::vector<std::pair<VkBuffer, VkBuffer>> handles;
+  std::vector<VkBufferCopy> regions;
+  for (const BufferCopy& copy : copies) {
+    pass.reads.push_back(copy.from);
+    pass.writes.push_back(copy.to);
+    handles.emplace_back(copy.from->handle(), copy.to->handle());
+    regions.push_back({0, 0, copy.from->size()});
+  }
+  pass.commands = [handles, regions](VkCommandBuffer cmd) {
+    for (size_t i = 0; i < handles.size(); ++i) {
+      vkCmdCopyBuffer(cmd, handles[i].first, handles[i].second, 1, &regions[i]);
+    }
+  };
+  return pass;
+}
+
 }  // namespace
 
 Status validate_image_size(uint32_t width, uint32_t height) {
@@ -47,23 +73,9 @@ Result<ImageBuffers> ImageBuffers::create(vk::Context& context, uint32_t width, 
 }
 
 vk::Pass ImageBuffers::readback_pass(bool with_radiance) const {
-  vk::Pass pass;
-  pass.name = "readback";
-  pass.group = vk::PassGroup::kReadback;
-  pass.reads = {&ldr};
-  pass.writes = {&ldr_readback};
-  if (with_radiance) {
-    pass.reads.push_back(&radiance);
-    pass.writes.push_back(&radiance_readback);
-  }
-  const VkBuffer hdr = radiance.handle(), hdr_host = radiance_readback.handle();
-  const VkBuffer ldr8 = ldr.handle(), ldr8_host = ldr_readback.handle();
-  const VkBufferCopy hdr_copy{0, 0, radiance.size()}, ldr_copy{0, 0, ldr.size()};
-  pass.commands = [=](VkCommandBuffer cmd) {
-    if (with_radiance) vkCmdCopyBuffer(cmd, hdr, hdr_host, 1, &hdr_copy);
-    vkCmdCopyBuffer(cmd, ldr8, ldr8_host, 1, &ldr_copy);
-  };
-  return pass;
+  std::vector<BufferCopy> copies = {{&ldr, &ldr_readback}};
+  if (with_radiance) copies.push_back({&radiance, &radiance_readback});
+  return readback(copies);
 }
 
 std::vector<float> ImageBuffers::read_radiance() const {
@@ -78,8 +90,37 @@ std::vector<uint8_t> ImageBuffers::read_ldr() const {
   return pixels;
 }
 
+gpu::Yuv420Layout yuv420_layout(uint32_t width, uint32_t height) {
+  gpu::Yuv420Layout layout{};
+  layout.width = width;
+  layout.height = height;
+  layout.y_stride = (width + 7) / 8 * 8;
+  layout.chroma_stride = layout.y_stride / 2;
+  layout.y_rows = (height + 1) / 2 * 2;
+  const uint32_t chroma_plane = layout.chroma_stride * layout.y_rows / 2;
+  layout.cb_offset = layout.y_stride * layout.y_rows;
+  layout.cr_offset = layout.cb_offset + chroma_plane;
+  layout.total_bytes = layout.cr_offset + chroma_plane;
+  return layout;
+}
+
 std::vector<vk::Binding> frame_set_bindings() {
-  return {{gpu::kFrameBindingGBuffer}, {gpu::kFrameBindingRadiance}, {gpu::kFrameBindingLdr}};
+  return {{gpu::kFrameBindingGBuffer},
+          {gpu::kFrameBindingRadiance},
+          {gpu::kFrameBindingLdr},
+          {gpu::kFrameBindingYuv420}};
+}
+
+vk::Pass FrameTarget::readback_pass(bool radiance, bool yuv420) const {
+  if (!yuv420) return images_.readback_pass(radiance);
+  std::vector<BufferCopy> copies = {{&yuv420_, &yuv420_readback_}};
+  if (radiance) copies.push_back({&images_.radiance, &images_.radiance_readback});
+  return readback(copies);
+}
+
+std::vector<uint8_t> FrameTarget::read_yuv420() const {
+  const auto* bytes = static_cast<const uint8_t*>(yuv420_readback_.mapped());
+  return std::vector<uint8_t>(bytes, bytes + yuv420_layout_.total_bytes);
 }
 
 Result<std::unique_ptr<FrameTarget>> FrameTarget::create(vk::Context& context, uint32_t width,
@@ -96,12 +137,23 @@ Result<std::unique_ptr<FrameTarget>> FrameTarget::create(vk::Context& context, u
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          vk::MemoryUsage::kDeviceLocal, "gbuffer"));
   DDGI_ASSIGN_OR_RETURN(target->images_, ImageBuffers::create(context, width, height, "frame"));
+  target->yuv420_layout_ = ddgi::yuv420_layout(width, height);
+  const VkDeviceSize yuv420_bytes = target->yuv420_layout_.total_bytes;
+  DDGI_ASSIGN_OR_RETURN(
+      target->yuv420_,
+      vk::Buffer::create(context, yuv420_bytes,
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                         vk::MemoryUsage::kDeviceLocal, "frame yuv420"));
+  DDGI_ASSIGN_OR_RETURN(target->yuv420_readback_,
+                        vk::Buffer::create(context, yuv420_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "frame yuv420 readback"));
   DDGI_ASSIGN_OR_RETURN(target->timer_, vk::GpuTimer::create(context, kMaxTimedPasses));
   DDGI_ASSIGN_OR_RETURN(target->commands_, vk::CommandSlot::create(context, "frame commands"));
   vk::DescriptorWriter(target->frame_set_)
       .buffer(gpu::kFrameBindingGBuffer, target->gbuffer_)
       .buffer(gpu::kFrameBindingRadiance, target->images_.radiance)
       .buffer(gpu::kFrameBindingLdr, target->images_.ldr)
+      .buffer(gpu::kFrameBindingYuv420, target->yuv420_)
       .apply(context.device());
   return target;
 }

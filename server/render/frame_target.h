@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "shared/frame_data.h"
 #include "vk/command_slot.h"
 #include "vk/context.h"
 #include "vk/pass.h"
@@ -44,6 +45,9 @@ struct ImageBuffers {
   std::vector<uint8_t> read_ldr() const;
 };
 
+// Where the Y, Cb and Cr planes of a width x height image lie in the YUV 4:2:0 buffer.
+gpu::Yuv420Layout yuv420_layout(uint32_t width, uint32_t height);
+
 // The bindings of the frame descriptor set (set 1 of frame kernels, shaders/shared/frame_data.h).
 std::vector<vk::Binding> frame_set_bindings();
 
@@ -55,6 +59,13 @@ class FrameTarget {
   uint32_t height() const { return images_.height; }
   const ImageBuffers& images() const { return images_; }
   const vk::Buffer& gbuffer() const { return gbuffer_; }
+  const vk::Buffer& yuv420() const { return yuv420_; }
+  const gpu::Yuv420Layout& yuv420_layout() const { return yuv420_layout_; }
+  // The copies to the host of what a frame hands on: the HDR image when `radiance`, and the
+  // 8-bit image as RGBA8 or, when `yuv420`, as the YUV planes.
+  vk::Pass readback_pass(bool radiance, bool yuv420) const;
+  // After a readback pass with `yuv420` completed: the planes, yuv420_layout() apart.
+  std::vector<uint8_t> read_yuv420() const;
   VkDescriptorSet frame_set() const { return frame_set_; }
   vk::GpuTimer& timer() { return timer_; }
   vk::CommandSlot& commands() { return commands_; }
@@ -72,6 +83,9 @@ class FrameTarget {
   VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
   vk::Buffer gbuffer_;
   ImageBuffers images_;
+  gpu::Yuv420Layout yuv420_layout_{};
+  vk::Buffer yuv420_;  // the 8-bit image as YUV 4:2:0 planes (yuv420.comp)
+  vk::Buffer yuv420_readback_;
   vk::GpuTimer timer_;
   uint64_t frame_index_ = 0;
   bool busy_ = false;

@@ -104,6 +104,9 @@ Status Renderer::create_kernels() {
       tonemap_,
       vk::Kernel::create(context_, {"tonemap", false, layouts, sizeof(gpu::TonemapConstants)},
                          backend_));
+  DDGI_ASSIGN_OR_RETURN(
+      yuv420_, vk::Kernel::create(context_, {"yuv420", false, layouts, sizeof(gpu::Yuv420Layout)},
+                                  backend_));
   return ok_status();
 }
 
@@ -225,7 +228,15 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
   }
   passes.push_back(pass("tonemap", tonemap_, frame_sets, vk::Pass::push(c.tonemap), {&radiance},
                         {&target.images().ldr}));
-  passes.push_back(target.images().readback_pass(settings.read_radiance));
+  if (settings.read_yuv420) {
+    // One invocation per 8x2 pixels (yuv420.comp).
+    const gpu::Yuv420Layout& layout = target.yuv420_layout();
+    vk::Pass yuv = pass("yuv420", yuv420_, frame_sets, vk::Pass::push(layout),
+                        {&target.images().ldr}, {&target.yuv420()});
+    yuv.size = {layout.y_stride / 8, layout.y_rows / 2, 1};
+    passes.push_back(std::move(yuv));
+  }
+  passes.push_back(target.readback_pass(settings.read_radiance, settings.read_yuv420));
   return passes;
 }
 
@@ -286,6 +297,7 @@ Result<PendingFrame> Renderer::submit(const FrameSettings& settings, FrameTarget
   frame.width_ = settings.width;
   frame.height_ = settings.height;
   frame.read_radiance_ = settings.read_radiance;
+  frame.read_yuv420_ = settings.read_yuv420;
   frame.frame_index_ = target.next_frame_index();
   return frame;
 }
@@ -304,6 +316,7 @@ PendingFrame& PendingFrame::operator=(PendingFrame&& other) noexcept {
     width_ = other.width_;
     height_ = other.height_;
     read_radiance_ = other.read_radiance_;
+    read_yuv420_ = other.read_yuv420_;
     frame_index_ = other.frame_index_;
   }
   return *this;
@@ -333,7 +346,12 @@ Result<FrameResult> PendingFrame::finish() {
   result.width = width_;
   result.height = height_;
   if (read_radiance_) result.radiance = target.images().read_radiance();
-  result.ldr = target.images().read_ldr();
+  if (read_yuv420_) {
+    result.yuv420 = target.read_yuv420();
+    result.yuv420_layout = target.yuv420_layout();
+  } else {
+    result.ldr = target.images().read_ldr();
+  }
   Result<std::vector<vk::PassTime>> times = target.timer().read();
   release();
   if (!times.ok()) return times.error();

@@ -42,6 +42,10 @@ struct FrameSettings {
   // Copy the linear HDR image back (FrameResult::radiance). A stream that only encodes the
   // 8-bit image turns this off: at 1920x1080 the HDR copy is 33 MB per frame.
   bool read_radiance = true;
+  // Hand on the 8-bit image as JPEG's YCbCr 4:2:0 planes (FrameResult::yuv420), converted on
+  // the GPU, instead of RGBA8: 1.5 bytes per pixel to read back instead of 4, and the JPEG
+  // encoder skips its colour conversion. Streams turn this on; images saved as PNG need RGBA8.
+  bool read_yuv420 = false;
   // Shadow rays per spherical light (radius > 0) and pixel in the shadow-rays mode, [1, 64].
   // 1: the real-time default, noisy penumbrae; more give smooth soft shadows.
   uint32_t light_samples = 1;
@@ -51,8 +55,10 @@ Status validate(const FrameSettings& settings);
 struct FrameResult {
   uint32_t width = 0;
   uint32_t height = 0;
-  std::vector<float> radiance;  // linear HDR, RGBA float per pixel, row 0 = top (if read)
-  std::vector<uint8_t> ldr;     // tone-mapped sRGB RGBA8 per pixel, row 0 = top
+  std::vector<float> radiance;        // linear HDR, RGBA float per pixel, row 0 = top (if read)
+  std::vector<uint8_t> ldr;           // tone-mapped sRGB RGBA8 per pixel, row 0 = top (unless YUV)
+  std::vector<uint8_t> yuv420;        // the same image as YUV 4:2:0 planes (if read_yuv420)
+  gpu::Yuv420Layout yuv420_layout{};  // where the planes lie in `yuv420`
   std::vector<vk::PassTime> pass_times;
   uint64_t frame_index = 0;
 };
@@ -87,6 +93,7 @@ class PendingFrame {
   uint32_t width_ = 0;
   uint32_t height_ = 0;
   bool read_radiance_ = false;
+  bool read_yuv420_ = false;
   uint64_t frame_index_ = 0;
 };
 
@@ -140,6 +147,7 @@ class Renderer {
   vk::Kernel indirect_;
   vk::Kernel field_views_;
   vk::Kernel tonemap_;
+  vk::Kernel yuv420_;
   std::unique_ptr<FrameTarget> own_target_;  // for render() without a target
 };
 

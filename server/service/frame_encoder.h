@@ -26,7 +26,7 @@ using FrameWaiter = std::function<void(Result<std::shared_ptr<const v1::Frame>>)
 
 struct EncodeJob {
   std::string view_key;  // jobs with the same key replace each other while queued
-  encode::ImageRgba8 image;
+  encode::ImageYuv420 image;  // JPEG's colour space already (FrameSettings::read_yuv420)
   int quality = 85;
   v1::Frame frame;  // everything but the JPEG bytes and the encode time
   uint64_t max_frame_bytes = 0;

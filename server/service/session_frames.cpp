@@ -182,7 +182,10 @@ void Session::deliver(InFlightFrame& frame) {
   env_.metrics->frames_rendered.fetch_add(1);
   env_.metrics->frame_seconds.observe(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.start).count());
-  job.image = encode::ImageRgba8{result->width, result->height, std::move(result->ldr)};
+  const gpu::Yuv420Layout& planes = result->yuv420_layout;
+  job.image = encode::ImageYuv420{
+      planes.width,     planes.height,    planes.y_stride,          planes.chroma_stride,
+      planes.cb_offset, planes.cr_offset, std::move(result->yuv420)};
   to_proto(record, &job.frame);
   env_.encoder->submit(std::move(frame.job));
 }

@@ -17,7 +17,9 @@ FrameSettings frame_settings(const ViewConfig& config, const Camera& camera,
   settings.view = config.view;
   settings.tonemap = config.tonemap;
   settings.exposure = config.exposure;
-  settings.read_radiance = false;  // views stream JPEG: only the 8-bit image is encoded
+  // Views stream JPEG: only the 8-bit image is encoded, from the planes the GPU converted.
+  settings.read_radiance = false;
+  settings.read_yuv420 = true;
   return settings;
 }
 

@@ -35,7 +35,9 @@ Measures DDGI frames against the path-traced reference. For each SCENE: path-tra
 image and its field part (everything but punctual direct light) with --spp samples; then for
 each configuration, warm a field up, render the full and the indirect view, and print PSNR,
 SSIM and mean FLIP (on the tone-mapped images, one exposure per scene chosen from the
-reference so its log-average luminance maps to 0.18) and the median GPU ms of a frame.
+reference so its log-average luminance maps to 0.18), the mean linear luminance over the
+reference's ("mean/ref": 1 when the field neither loses nor adds light) and the median GPU ms
+of a frame.
 
   --width N --height N  image size                                     [480 x 270]
   --spp N               reference samples per pixel                    [1024]
@@ -98,6 +100,20 @@ float auto_exposure(const std::vector<float>& radiance) {
   }
   const double average = n ? std::exp(log_sum / n) : 1.0;
   return static_cast<float>(std::clamp(0.18 / average, 1e-6, 1e6));
+}
+
+// Mean Rec. 709 luminance of linear RGBA radiance.
+double mean_luminance(const std::vector<float>& rgba) {
+  double sum = 0.0;
+  for (size_t i = 0; i < rgba.size(); i += 4) {
+    sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
+  }
+  return rgba.empty() ? 0.0 : sum / double(rgba.size() / 4);
+}
+
+double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference) {
+  const double ref = mean_luminance(reference);
+  return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
 }
 
 struct Scores {
@@ -205,10 +221,12 @@ Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& sc
                      indirect.radiance));
   const ProbeStateCounts c = gi->field()->probe_counts();
   std::printf(
-      "| %s | %s | %llu / %llu / %llu | %.2f | %.4f | %.4f | %.2f | %.4f | %.4f | %.3f | %.3f |\n",
+      "| %s | %s | %llu / %llu / %llu | %.2f | %.4f | %.4f | %.3f | %.2f | %.4f | %.4f | %.3f | "
+      "%.3f | %.3f |\n",
       stem.c_str(), config.name.c_str(), static_cast<unsigned long long>(c.active()),
       static_cast<unsigned long long>(c.sleeping), static_cast<unsigned long long>(c.off),
-      s_full.psnr, s_full.ssim, s_full.flip, s_ind.psnr, s_ind.ssim, s_ind.flip,
+      s_full.psnr, s_full.ssim, s_full.flip, mean_ratio(full.radiance, refs.full.radiance),
+      s_ind.psnr, s_ind.ssim, s_ind.flip, mean_ratio(indirect.radiance, refs.second.radiance),
       table.group_median(vk::PassGroup::kIrradianceField),
       table.others_median(vk::PassGroup::kIrradianceField));
   std::fflush(stdout);
@@ -233,8 +251,8 @@ Status run(int argc, char** argv) {
               static_cast<long long>(job.warmup));
   std::printf(
       "| scene | configuration | probes traced / sleeping / off | full: PSNR | SSIM | FLIP | "
-      "indirect: PSNR | SSIM | FLIP | field ms | frame ms |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "mean/ref | indirect: PSNR | SSIM | FLIP | mean/ref | field ms | frame ms |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     const std::string stem = tools::file_stem(scene_path);

@@ -11,6 +11,7 @@ DDGI_CONST uint kFrameSet = 1;
 DDGI_CONST uint kFrameBindingGBuffer = 0;   // GBufferTexel per pixel
 DDGI_CONST uint kFrameBindingRadiance = 1;  // vec4 per pixel: linear HDR radiance
 DDGI_CONST uint kFrameBindingLdr = 2;       // uint per pixel: tone-mapped sRGB RGBA8
+DDGI_CONST uint kFrameBindingYuv420 = 3;    // uint words: the LDR image as Y, Cb, Cr planes
 
 // GBufferTexel::albedo_flags.y, bits 16..31.
 DDGI_CONST uint kGBufferHit = 1u << 16;        // the primary ray hit a surface
@@ -100,6 +101,21 @@ struct TonemapConstants {
   float exposure;  // linear multiplier applied before the operator
 };
 
+// The LDR image as JPEG's YCbCr (JFIF: full-range BT.601) with 4:2:0 chroma, three planes in
+// one buffer; yuv420.comp writes it, libjpeg-turbo compresses it without converting colours.
+// Sizes in bytes; strides and offsets are multiples of 4, so the kernel writes whole words.
+// frame_target.h's yuv420_layout() is the one place they are computed.
+struct Yuv420Layout {
+  uint width;          // image pixels
+  uint height;
+  uint y_stride;       // bytes per Y row: the width rounded up to 8 (an invocation: 8x2 pixels)
+  uint chroma_stride;  // bytes per Cb or Cr row: y_stride / 2
+  uint y_rows;         // the height rounded up to 2; chroma planes have half as many rows
+  uint cb_offset;      // y_stride * y_rows: the Y plane starts at 0
+  uint cr_offset;      // cb_offset + chroma_stride * y_rows / 2
+  uint total_bytes;    // cr_offset + chroma_stride * y_rows / 2
+};
+
 #ifdef __cplusplus
 // C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
 // that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
@@ -156,6 +172,7 @@ static_assert(offsetof(TonemapConstants, width) == 0);
 static_assert(offsetof(TonemapConstants, height) == 4);
 static_assert(offsetof(TonemapConstants, tonemap) == 8);
 static_assert(offsetof(TonemapConstants, exposure) == 12);
+static_assert(sizeof(Yuv420Layout) == 32);  // eight uints, no padding in either language
 #endif
 
 DDGI_NAMESPACE_END

@@ -233,8 +233,9 @@ TEST_F(E2eTest, StreamedFrameMatchesRenderer) {
        {Case{"streamed", &streamed, streamed_frame.frame_index()}, Case{"unary", &served, 1}}) {
     SCOPED_TRACE(c.name);
     const encode::ImageRgba8 reference = renderer_image(kWarmup, c.frames, kWidth, kHeight);
-    // The reference through the same encoder: what JPEG alone changes.
-    auto jpeg = encode::encode_jpeg(reference, 95);
+    // The reference through the same conversion (the service's GPU YUV planes equal the CPU's,
+    // Yuv420Test) and encoder: what JPEG alone changes.
+    auto jpeg = encode::encode_jpeg(encode::to_yuv420(reference), 95);
     ASSERT_TRUE(jpeg.ok());
     auto round_trip = encode::decode_jpeg(*jpeg);
     ASSERT_TRUE(round_trip.ok());
