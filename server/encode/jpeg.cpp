@@ -1,5 +1,7 @@
 #include "encode/jpeg.h"
 
+#include "encode/jpeg_planes.h"
+
 #include <turbojpeg.h>
 
 #include <memory>
@@ -22,7 +24,8 @@ struct TjFreer {
 // JPEG stores dimensions in 16 bits.
 constexpr uint32_t kMaxJpegDimension = 65535;
 
-// What both encoders check first.
+}  // namespace
+
 Status check_jpeg_input(uint32_t width, uint32_t height, int quality) {
   if (quality < 1 || quality > 100) {
     return invalid_argument("JPEG quality must be in 1..100, got " + std::to_string(quality));
@@ -33,6 +36,8 @@ Status check_jpeg_input(uint32_t width, uint32_t height, int quality) {
   }
   return ok_status();
 }
+
+namespace {
 
 // Runs one TurboJPEG compression (`compress` is called with the handle and the output
 // pointers) and returns its bytes.
@@ -53,6 +58,13 @@ Result<std::vector<uint8_t>> compress_with(Compress compress) {
 
 }  // namespace
 
+Yuv420Planes yuv420_planes(const ImageYuv420& image) {
+  const uint8_t* bytes = image.bytes.data();
+  return {bytes,          bytes + image.cb_offset, bytes + image.cr_offset,
+          image.y_stride, image.chroma_stride,     image.width,
+          image.height};
+}
+
 Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality, JpegChroma chroma) {
   DDGI_TRY(check_jpeg_input(image.width, image.height, quality));
   DDGI_TRY(validate(image));
@@ -64,18 +76,21 @@ Result<std::vector<uint8_t>> encode_jpeg(const ImageRgba8& image, int quality, J
   });
 }
 
+Result<std::vector<uint8_t>> compress_yuv420_planes(const Yuv420Planes& planes, int quality) {
+  const unsigned char* pointers[3] = {planes.y, planes.cb, planes.cr};
+  const int strides[3] = {static_cast<int>(planes.y_stride), static_cast<int>(planes.chroma_stride),
+                          static_cast<int>(planes.chroma_stride)};
+  return compress_with([&](tjhandle handle, unsigned char** output, unsigned long* size) {
+    return tjCompressFromYUVPlanes(handle, pointers, static_cast<int>(planes.width), strides,
+                                   static_cast<int>(planes.height), TJSAMP_420, output, size,
+                                   quality, 0);
+  });
+}
+
 Result<std::vector<uint8_t>> encode_jpeg(const ImageYuv420& image, int quality) {
   DDGI_TRY(check_jpeg_input(image.width, image.height, quality));
   DDGI_TRY(validate(image));
-  const uint8_t* y = image.bytes.data();
-  const unsigned char* planes[3] = {y, y + image.cb_offset, y + image.cr_offset};
-  const int strides[3] = {static_cast<int>(image.y_stride), static_cast<int>(image.chroma_stride),
-                          static_cast<int>(image.chroma_stride)};
-  return compress_with([&](tjhandle handle, unsigned char** output, unsigned long* size) {
-    return tjCompressFromYUVPlanes(handle, planes, static_cast<int>(image.width), strides,
-                                   static_cast<int>(image.height), TJSAMP_420, output, size,
-                                   quality, 0);
-  });
+  return compress_yuv420_planes(yuv420_planes(image), quality);
 }
 
 Result<ImageRgba8> decode_jpeg(std::span<const uint8_t> bytes) {

@@ -9,8 +9,9 @@
 
 namespace ddgi::service {
 
-FrameEncoder::FrameEncoder(unsigned threads, Metrics& metrics) : metrics_(metrics) {
-  for (unsigned i = 0; i < std::max(1u, threads); ++i) threads_.emplace_back([this] { work(); });
+FrameEncoder::FrameEncoder(unsigned threads, Metrics& metrics)
+    : metrics_(metrics), max_strips_(std::max(1u, threads)), strip_pool_(max_strips_ - 1) {
+  for (unsigned i = 0; i < max_strips_; ++i) threads_.emplace_back([this] { work(); });
 }
 
 FrameEncoder::~FrameEncoder() {
@@ -54,7 +55,11 @@ void FrameEncoder::work() {
 
 void FrameEncoder::run(EncodeJob& job) {
   const auto start = std::chrono::steady_clock::now();
-  Result<std::vector<uint8_t>> jpeg = encode::encode_jpeg(job.image, job.quality);
+  Result<std::vector<uint8_t>> jpeg =
+      encode::encode_jpeg_strips(job.image, job.quality, max_strips_,
+                                 [this](size_t count, const std::function<void(size_t)>& body) {
+                                   strip_pool_.parallel_for(count, body);
+                                 });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The Frame's other fields (camera, pass times, ids) take well under this.

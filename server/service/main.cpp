@@ -43,7 +43,8 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --auth-token-file FILE    require "authorization: Bearer <token>" (token read from FILE)
   --metrics-port N          Prometheus metrics at http://ADDRESS:N/metrics; -1: off  [9464]
   --metrics-address A       IPv4 address of the metrics endpoint    [0.0.0.0]
-  --encode-threads N        JPEG encoder threads, 1..64              [2]
+  --encode-threads N        JPEG encoder threads, 1..64; also the most  [2]
+                            strips one frame is compressed in at once
   --shutdown-grace S        seconds for streams and sessions to end  [5]
   --device NAME             Vulkan device whose name contains NAME
   --backend B               auto | query | pipeline                  [auto]

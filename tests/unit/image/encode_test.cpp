@@ -155,6 +155,49 @@ TEST(Jpeg, YuvPlanesThatDoNotFitAreRefused) {
   EXPECT_FALSE(encode_jpeg(ImageYuv420{}, 90).ok());
 }
 
+// Runs the strips one after another (the service runs them on its TaskPool).
+void sequential(size_t count, const std::function<void(size_t)>& body) {
+  for (size_t i = 0; i < count; ++i) body(i);
+}
+
+// Strips joined with restart markers decode to exactly the one-piece JPEG's pixels: 11 strips
+// (so the restart markers cycle past RST7), an odd width with a partial MCU column and an odd
+// last strip. Measured: 11 strips, 2 bytes per strip over the one-piece file (the marker).
+TEST(Jpeg, StripsDecodeToTheOnePieceImage) {
+  const ImageRgba8 image = smooth_rgba(67, 1401);
+  const ImageYuv420 planes = to_yuv420(image);
+  Result<std::vector<uint8_t>> whole = encode_jpeg(planes, 85);
+  Result<std::vector<uint8_t>> strips = encode_jpeg_strips(planes, 85, 16, sequential);
+  ASSERT_TRUE(whole.ok());
+  ASSERT_TRUE(strips.ok()) << strips.error().message;
+  size_t markers = 0;
+  for (size_t i = 0; i + 1 < strips->size(); ++i) {
+    markers += (*strips)[i] == 0xFF && ((*strips)[i + 1] & 0xF8) == 0xD0 ? 1 : 0;
+  }
+  std::printf("%zu restart markers, %zu bytes vs %zu in one piece\n", markers, strips->size(),
+              whole->size());
+  EXPECT_EQ(markers, 10u);  // 1401 rows: 88 MCU rows, strips of 8
+  EXPECT_LE(strips->size(), whole->size() + 8 * (markers + 1));
+  Result<ImageRgba8> from_whole = decode_jpeg(*whole);
+  Result<ImageRgba8> from_strips = decode_jpeg(*strips);
+  ASSERT_TRUE(from_strips.ok()) << from_strips.error().message;
+  ASSERT_EQ(from_strips->width, 67u);
+  ASSERT_EQ(from_strips->height, 1401u);
+  EXPECT_EQ(from_strips->pixels, from_whole->pixels);
+  EXPECT_LE(max_rgb_error(image, *from_strips), 12);  // not trivially equal: it is the image
+}
+
+// Small images stay in one piece (strips are at least 8 MCU rows), and a strip limit of 1 is
+// the plain encoder.
+TEST(Jpeg, SmallImagesAndOneStripAreOnePiece) {
+  const ImageYuv420 small = to_yuv420(smooth_rgba(64, 200));
+  const ImageYuv420 tall = to_yuv420(smooth_rgba(32, 600));
+  EXPECT_EQ(*encode_jpeg_strips(small, 90, 8, sequential), *encode_jpeg(small, 90));
+  EXPECT_EQ(*encode_jpeg_strips(tall, 90, 1, sequential), *encode_jpeg(tall, 90));
+  EXPECT_NE(*encode_jpeg_strips(tall, 90, 4, sequential), *encode_jpeg(tall, 90));
+  EXPECT_FALSE(encode_jpeg_strips(tall, 0, 4, sequential).ok());
+}
+
 TEST(Png, RoundTripIsExactIncludingAlpha) {
   const ImageRgba8 image = smooth_rgba(37, 21);
   Result<std::vector<uint8_t>> bytes = encode_png(image);
