@@ -21,7 +21,10 @@ void main() {
   const uint index = pixel.y * pc.width + pixel.x;
   const GBufferTexel texel = gbuffer[index];
   const uint flags = unpack_gbuffer_flags(texel.albedo_flags);
-  vec3 result = texel.emission;
+  // The indirect view shows only what the field brings: nothing seen directly, neither an
+  // emitter nor the environment behind a missed primary ray (the path tracer's field-indirect
+  // view, which ddgi-eval compares it with, leaves both out too).
+  vec3 result = pc.view == kViewIndirect ? vec3(0.0) : texel.emission;
   if ((flags & kGBufferHit) != 0u) {
     Surface s;
     s.position = texel.position;
