@@ -71,6 +71,7 @@ Result<std::unique_ptr<PathTracer>> PathTracer::create(vk::Context& context, Gpu
   std::unique_ptr<PathTracer> tracer(new PathTracer(context, scene));
   tracer->backend_ = backend;
   DDGI_TRY(tracer->create_kernels());
+  DDGI_ASSIGN_OR_RETURN(tracer->timer_, vk::GpuTimer::create(context, 1));
   return tracer;
 }
 
@@ -149,8 +150,12 @@ Status PathTracer::accumulate(const PathTraceSettings& settings, uint32_t sample
   pass.size = {settings.width, settings.height, 1};
   pass.reads = {&images_.radiance};
   pass.writes = {&images_.radiance};
-  DDGI_TRY(context_.submit_and_wait(
-      [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, std::span(&pass, 1)); }));
+  DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    timer_.begin_frame(cmd);
+    vk::record_passes(cmd, &timer_, std::span(&pass, 1));
+  }));
+  DDGI_ASSIGN_OR_RETURN(const std::vector<vk::PassTime> times, timer_.read());
+  last_accumulate_ms_ = times.empty() ? 0.0 : times.front().milliseconds;
   settings_ = settings;
   scene_revision_ = scene_.revision();
   samples_ += samples;

@@ -19,6 +19,7 @@
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/resources.h"
+#include "vk/timer.h"
 
 namespace ddgi {
 
@@ -73,6 +74,9 @@ class PathTracer {
   // Drops the accumulated samples; the next accumulate() starts over.
   void reset() { samples_ = 0; }
   uint32_t samples() const { return samples_; }
+  // GPU milliseconds of the last accumulate() (0 when the device has no timestamps): what an
+  // image of that many samples costs, for equal-time comparisons (ddgi-eval --pareto).
+  double last_accumulate_ms() const { return last_accumulate_ms_; }
 
   // The mean so far, and its tone-mapped version.
   Result<PathTraceImage> read(Tonemap tonemap = Tonemap::kAces, float exposure = 1.0f);
@@ -93,6 +97,8 @@ class PathTracer {
   vk::Kernel tonemap_;
 
   ImageBuffers images_;
+  vk::GpuTimer timer_;
+  double last_accumulate_ms_ = 0.0;
 
   PathTraceSettings settings_;  // of the accumulated samples
   uint64_t scene_revision_ = 0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/pareto.h"
 #include "tools/reference_render.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
@@ -49,6 +51,12 @@ of a frame.
                                                                         [default:]
   --field NAME=VALUE    applied to every configuration first (repeatable)
   --out-dir DIR         also write every reference and frame as EXR there
+  --pareto DIR          also time the path tracer at 1, 2, 4, ... --pt-max-spp samples per
+                        pixel, and write per scene DIR/SCENE.json (every configuration, the
+                        Pareto front of FLIP against GPU ms, each front point's FLIP over the
+                        path tracer's at the same ms) and DIR/SCENE.svg (the plot); DIR must
+                        exist
+  --pt-max-spp N        the path tracer's largest sample count for --pareto      [64]
   --backend B           auto | query | pipeline                         [auto]
 )";
 
@@ -116,19 +124,21 @@ double mean_ratio(const std::vector<float>& test, const std::vector<float>& refe
   return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
 }
 
-struct Scores {
-  double psnr = 0.0, ssim = 0.0, flip = 0.0;
-};
-
-Result<Scores> score(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& test,
-                     uint32_t width, uint32_t height) {
+// PSNR, SSIM and FLIP of the tone-mapped images, and the mean linear luminance over the
+// reference's.
+Result<tools::ImageScores> score(const std::vector<uint8_t>& reference,
+                                 const std::vector<float>& reference_radiance,
+                                 const std::vector<uint8_t>& test,
+                                 const std::vector<float>& test_radiance, uint32_t width,
+                                 uint32_t height) {
   const std::vector<float> a = to_unit_rgb(reference), b = to_unit_rgb(test);
   const metrics::RgbImageView va{width, height, a}, vb{width, height, b};
-  Scores s;
+  tools::ImageScores s;
   DDGI_ASSIGN_OR_RETURN(s.psnr, metrics::psnr(va, vb));
   DDGI_ASSIGN_OR_RETURN(s.ssim, metrics::ssim(va, vb));
   DDGI_ASSIGN_OR_RETURN(const metrics::FlipResult f, metrics::flip(va, vb));
   s.flip = f.mean;
+  s.mean_ratio = mean_ratio(test_radiance, reference_radiance);
   return s;
 }
 
@@ -147,6 +157,8 @@ struct EvalJob {
   std::vector<Config> configs;
   std::vector<std::string> field_assignments;  // before every configuration's own
   std::string out_dir;
+  std::string pareto_dir;  // empty: no --pareto
+  uint32_t pt_max_spp = 64;
 };
 
 Result<EvalJob> parse_job(const Flags& flags) {
@@ -161,6 +173,9 @@ Result<EvalJob> parse_job(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(const std::string configs_text, flags.get_string("configs", "default:"));
   DDGI_ASSIGN_OR_RETURN(job.configs, parse_configs(configs_text));
   DDGI_ASSIGN_OR_RETURN(job.out_dir, flags.get_string("out-dir", ""));
+  DDGI_ASSIGN_OR_RETURN(job.pareto_dir, flags.get_string("pareto", ""));
+  DDGI_ASSIGN_OR_RETURN(const int64_t pt_max_spp, flags.get_int("pt-max-spp", 64, 1, 65536));
+  job.pt_max_spp = static_cast<uint32_t>(pt_max_spp);
   job.field_assignments = flags.get_all("field");
   return job;
 }
@@ -183,8 +198,9 @@ Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, 
 
 // One table row: a warmed-up field of `config`, `frames` timed full frames (one update each),
 // then the indirect view, both scored against the references.
-Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& scene,
-                       const std::string& stem, const ReferencePair& refs, const Config& config) {
+Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& job,
+                                           const Scene& scene, const std::string& stem,
+                                           const ReferencePair& refs, const Config& config) {
   std::vector<std::string> assignments = job.field_assignments;
   assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
   DDGI_ASSIGN_OR_RETURN(const GiStackOptions options,
@@ -211,33 +227,86 @@ Status evaluate_config(vk::Context& context, const EvalJob& job, const Scene& sc
     table.add(full.pass_times);
   }
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
-  DDGI_ASSIGN_OR_RETURN(const Scores s_full, score(refs.full.ldr, full.ldr, job.width, job.height));
-  DDGI_ASSIGN_OR_RETURN(const Scores s_ind,
-                        score(refs.second.ldr, indirect.ldr, job.width, job.height));
+  tools::ConfigPoint point{config.name, assignments};
+  DDGI_ASSIGN_OR_RETURN(point.full, score(refs.full.ldr, refs.full.radiance, full.ldr,
+                                          full.radiance, job.width, job.height));
+  DDGI_ASSIGN_OR_RETURN(point.indirect, score(refs.second.ldr, refs.second.radiance, indirect.ldr,
+                                              indirect.radiance, job.width, job.height));
+  point.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
+  point.frame_ms = table.others_median(vk::PassGroup::kIrradianceField);
+  point.field_mib = double(field_gpu_bytes(gi->field()->params())) / (1024.0 * 1024.0);
   std::string tag = config.name;
   std::replace(tag.begin(), tag.end(), ' ', '-');
   DDGI_TRY(write_exr(job.out_dir, stem + "." + tag, job.width, job.height, full.radiance));
   DDGI_TRY(write_exr(job.out_dir, stem + "." + tag + "-indirect", job.width, job.height,
                      indirect.radiance));
   const ProbeStateCounts c = gi->field()->probe_counts();
+  const tools::ImageScores &f = point.full, &i = point.indirect;
   std::printf(
       "| %s | %s | %llu / %llu / %llu | %.2f | %.4f | %.4f | %.3f | %.2f | %.4f | %.4f | %.3f | "
       "%.3f | %.3f |\n",
       stem.c_str(), config.name.c_str(), static_cast<unsigned long long>(c.active()),
-      static_cast<unsigned long long>(c.sleeping), static_cast<unsigned long long>(c.off),
-      s_full.psnr, s_full.ssim, s_full.flip, mean_ratio(full.radiance, refs.full.radiance),
-      s_ind.psnr, s_ind.ssim, s_ind.flip, mean_ratio(indirect.radiance, refs.second.radiance),
-      table.group_median(vk::PassGroup::kIrradianceField),
-      table.others_median(vk::PassGroup::kIrradianceField));
+      static_cast<unsigned long long>(c.sleeping), static_cast<unsigned long long>(c.off), f.psnr,
+      f.ssim, f.flip, f.mean_ratio, i.psnr, i.ssim, i.flip, i.mean_ratio, point.field_ms,
+      point.frame_ms);
   std::fflush(stdout);
-  return ok_status();
+  return point;
+}
+
+// The equal-time baseline: the path tracer at 1, 2, 4, ... job.pt_max_spp samples per pixel
+// (pixel centres, as the frames and the reference), each image made --frames times (the median
+// GPU time counts) and the last scored against the reference.
+Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context,
+                                                            const EvalJob& job, const Scene& scene,
+                                                            const ReferencePair& refs) {
+  DDGI_ASSIGN_OR_RETURN(auto gpu, GpuScene::create(context, scene));
+  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu, context.default_backend()));
+  std::vector<tools::PathTracePoint> curve;
+  for (uint32_t spp = 1; spp <= job.pt_max_spp; spp *= 2) {
+    std::vector<double> times;  // one image per timed frame; the median counts
+    for (int64_t run = 0; run < job.frames; ++run) {
+      tracer->reset();
+      DDGI_TRY(tracer->accumulate(refs.settings, spp));
+      times.push_back(tracer->last_accumulate_ms());
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    const double ms = times[times.size() / 2];
+    DDGI_ASSIGN_OR_RETURN(const PathTraceImage image, tracer->read(Tonemap::kAces, refs.exposure));
+    DDGI_ASSIGN_OR_RETURN(
+        const tools::ImageScores scores,
+        score(refs.full.ldr, refs.full.radiance, image.ldr, image.radiance, job.width, job.height));
+    curve.push_back({spp, ms, scores});
+  }
+  return curve;
+}
+
+// After the table: per scene, each front point against the path tracer at the same ms.
+void print_fronts(const std::vector<tools::SceneTrade>& trades) {
+  std::printf(
+      "\n| scene | front point | GPU ms | FLIP | path tracing FLIP, same ms | ratio |\n"
+      "|---|---|---|---|---|---|\n");
+  for (const tools::SceneTrade& trade : trades) {
+    for (size_t i : tools::pareto_front(trade.configs)) {
+      const tools::ConfigPoint& c = trade.configs[i];
+      const std::optional<double> traced =
+          tools::path_trace_flip_at(trade.path_tracing, c.total_ms());
+      if (traced) {
+        std::printf("| %s | %s | %.3f | %.4f | %.4f | %.2f |\n", trade.scene.c_str(),
+                    c.name.c_str(), c.total_ms(), c.full.flip, *traced, c.full.flip / *traced);
+      } else {
+        std::printf("| %s | %s | %.3f | %.4f | (outside the traced spp range) | |\n",
+                    trade.scene.c_str(), c.name.c_str(), c.total_ms(), c.full.flip);
+      }
+    }
+  }
 }
 
 Status run(int argc, char** argv) {
-  DDGI_ASSIGN_OR_RETURN(Flags flags, Flags::parse(argc, argv,
-                                                  {"width", "height", "spp", "warmup", "frames",
-                                                   "configs", "field", "out-dir", "backend"},
-                                                  {"help"}));
+  DDGI_ASSIGN_OR_RETURN(
+      Flags flags, Flags::parse(argc, argv,
+                                {"width", "height", "spp", "warmup", "frames", "configs", "field",
+                                 "out-dir", "backend", "pareto", "pt-max-spp"},
+                                {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -253,14 +322,23 @@ Status run(int argc, char** argv) {
       "| scene | configuration | probes traced / sleeping / off | full: PSNR | SSIM | FLIP | "
       "mean/ref | indirect: PSNR | SSIM | FLIP | mean/ref | field ms | frame ms |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<tools::SceneTrade> trades;
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     const std::string stem = tools::file_stem(scene_path);
     DDGI_ASSIGN_OR_RETURN(const ReferencePair refs, make_references(*context, job, scene, stem));
+    tools::SceneTrade trade{stem, job.width, job.height, static_cast<uint32_t>(job.spp), {}, {}};
     for (const Config& config : job.configs) {
-      DDGI_TRY(evaluate_config(*context, job, scene, stem, refs, config));
+      DDGI_ASSIGN_OR_RETURN(tools::ConfigPoint point,
+                            evaluate_config(*context, job, scene, stem, refs, config));
+      trade.configs.push_back(std::move(point));
     }
+    if (job.pareto_dir.empty()) continue;
+    DDGI_ASSIGN_OR_RETURN(trade.path_tracing, path_trace_curve(*context, job, scene, refs));
+    DDGI_TRY(tools::write_scene_trade(trade, job.pareto_dir));
+    trades.push_back(std::move(trade));
   }
+  if (!trades.empty()) print_fronts(trades);
   return ok_status();
 }
 

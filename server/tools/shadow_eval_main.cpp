@@ -25,7 +25,7 @@
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tools/reference_render.h"
-#include "tools/shadow_plot.h"
+#include "tools/scatter_plot.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
 

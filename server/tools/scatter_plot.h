@@ -1,5 +1,5 @@
-// A scatter plot as a self-contained SVG file: what ddgi-shadow-eval draws error against GPU time
-// with (no plotting dependency; the SVG is plain text).
+// A scatter plot as a self-contained SVG file: what ddgi-shadow-eval and ddgi-eval --pareto
+// draw error against GPU time with (no plotting dependency; the SVG is plain text).
 #pragma once
 
 #include <string>

@@ -1,4 +1,5 @@
-#include "tools/shadow_plot.h"
+// Scatter plots as SVG (tools/scatter_plot.h).
+#include "tools/scatter_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,64 @@
+// The speed-for-accuracy trade of one scene, as `ddgi-eval --pareto DIR` records it: every
+// field configuration's GPU cost and error against the path-traced reference, the Pareto front
+// over them, and the path tracer itself at 1, 2, 4, ... samples per pixel as the equal-time
+// baseline (issue 14). Written per scene as JSON (DIR/SCENE.json) and as an SVG plot of FLIP
+// against milliseconds (DIR/SCENE.svg).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "tools/scatter_plot.h"
+
+namespace ddgi::tools {
+
+// Errors of one image against its reference (tone-mapped, one exposure per scene).
+struct ImageScores {
+  double psnr = 0.0;
+  double ssim = 0.0;
+  double flip = 0.0;        // mean FLIP: the axis of the front
+  double mean_ratio = 0.0;  // mean linear luminance over the reference's
+};
+
+struct ConfigPoint {
+  std::string name;
+  std::vector<std::string> assignments;  // the field parameters set, "name=value"
+  double field_ms = 0.0;                 // medians over the timed frames
+  double frame_ms = 0.0;
+  double field_mib = 0.0;  // the field's GPU memory
+  ImageScores full;
+  ImageScores indirect;
+  double total_ms() const { return field_ms + frame_ms; }
+};
+
+struct PathTracePoint {
+  uint32_t spp = 0;
+  double ms = 0.0;  // one image of `spp` samples per pixel, GPU time
+  ImageScores full;
+};
+
+struct SceneTrade {
+  std::string scene;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t reference_spp = 0;
+  std::vector<ConfigPoint> configs;
+  std::vector<PathTracePoint> path_tracing;  // ascending spp
+};
+
+// The configurations no other beats on both axes (lower total ms and lower FLIP), by ascending
+// time: indices into `configs`.
+std::vector<size_t> pareto_front(const std::vector<ConfigPoint>& configs);
+
+// The path tracer's FLIP at `ms`, interpolated linearly in log(ms) between its measured points;
+// nothing outside their range.
+std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms);
+
+// DIR/SCENE.json and DIR/SCENE.svg (DIR must exist). The JSON holds every point, the front and,
+// per front point, its FLIP over the path tracer's at the same time.
+Status write_scene_trade(const SceneTrade& trade, const std::string& dir);
+
+}  // namespace ddgi::tools

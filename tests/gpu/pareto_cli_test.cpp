@@ -1,0 +1,132 @@
+// The Pareto harness (ddgi-eval --pareto, tools/pareto.h): the front and the equal-time lookup
+// on hand-made points, then the executable end to end on the Cornell box: the JSON holds every
+// configuration, the path tracer's curve and a front that is one, and the SVG plot is written
+// with all three series.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/gpu/cli_run.h"
+#include "tools/pareto.h"
+
+namespace ddgi::test {
+namespace {
+
+tools::ConfigPoint point(const char* name, double ms, double flip) {
+  tools::ConfigPoint p;
+  p.name = name;
+  p.field_ms = ms / 2;
+  p.frame_ms = ms / 2;
+  p.full.flip = flip;
+  return p;
+}
+
+// Four configurations: "slow and bad" is beaten by "fast" on both axes, so it is not on the
+// front; the rest are, by ascending time.
+TEST(Pareto, FrontHoldsThePointsNoOtherBeatsOnBothAxes) {
+  const std::vector<tools::ConfigPoint> configs = {
+      point("slow and bad", 4.0, 0.3), point("fast", 1.0, 0.2), point("best", 8.0, 0.05),
+      point("middle", 2.0, 0.1)};
+  EXPECT_EQ(tools::pareto_front(configs), (std::vector<size_t>{1, 3, 2}));
+}
+
+// Interpolation in log(ms): at the geometric mean of two measured times the FLIP is the mean
+// of theirs; outside the measured range there is no value.
+TEST(Pareto, PathTraceFlipAtEqualTime) {
+  std::vector<tools::PathTracePoint> curve(3);
+  curve[0] = {1, 1.0, {0, 0, 0.4, 0}};
+  curve[1] = {2, 4.0, {0, 0, 0.2, 0}};
+  curve[2] = {4, 16.0, {0, 0, 0.1, 0}};
+  EXPECT_NEAR(*tools::path_trace_flip_at(curve, 2.0), 0.3, 1e-12);
+  EXPECT_NEAR(*tools::path_trace_flip_at(curve, 8.0), 0.15, 1e-12);
+  EXPECT_NEAR(*tools::path_trace_flip_at(curve, 16.0), 0.1, 1e-12);
+  EXPECT_FALSE(tools::path_trace_flip_at(curve, 0.5).has_value());
+  EXPECT_FALSE(tools::path_trace_flip_at(curve, 17.0).has_value());
+}
+
+class ParetoCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("ddgi-pareto-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_ / "out");
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  CliRun eval(const std::string& arguments) { return run_cli(DDGI_EVAL_EXE, arguments, dir_); }
+  std::filesystem::path dir_;
+};
+
+// Three configurations of different cost, the path tracer at 1, 2, 4 spp. Measured on
+// lavapipe: path-traced FLIP 0.27 / 0.22 / 0.17 at 1 / 2 / 4 spp; the default's mean 0.96 of
+// the reference's.
+TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
+  const CliRun run = eval(
+      "scenes/cornell_box.gltf --width 40 --height 30 --spp 16 --warmup 4 --frames 1 "
+      "--pt-max-spp 4 --pareto '" +
+      (dir_ / "out").string() +
+      "' --configs 'default:;16 rays:rays_per_probe=16;small maps:irradiance_texels=4,"
+      "distance_texels=8,rays_per_probe=32'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("| scene | front point |"), std::string::npos) << run.out;
+  const nlohmann::json doc = nlohmann::json::parse(slurp(dir_ / "out" / "cornell_box.json"));
+  ASSERT_EQ(doc["configs"].size(), 3u);
+  EXPECT_EQ(doc["configs"][1]["assignments"][0], "rays_per_probe=16");
+  const double mean_ratio = doc["configs"][0]["full"]["mean_ratio"];
+  EXPECT_GT(mean_ratio, 0.5);
+  EXPECT_LT(mean_ratio, 2.0);
+
+  const nlohmann::json& curve = doc["path_tracing"];
+  ASSERT_EQ(curve.size(), 3u);
+  for (size_t i = 0; i < curve.size(); ++i) {
+    EXPECT_EQ(curve[i]["spp"], 1u << i);
+    EXPECT_GT(curve[i]["ms"].get<double>(), 0.0);
+    std::printf("path tracing %u spp: FLIP %.3f\n", curve[i]["spp"].get<unsigned>(),
+                curve[i]["full"]["flip"].get<double>());
+  }
+  // More samples, less error: the curve is a measurement, not a constant.
+  EXPECT_LT(curve[2]["full"]["flip"].get<double>(), curve[0]["full"]["flip"].get<double>());
+
+  // The front is one: ascending time, descending FLIP, and every configuration off it is
+  // beaten on both axes by a point on it.
+  const nlohmann::json& front = doc["front"];
+  ASSERT_FALSE(front.empty());
+  std::vector<bool> on_front(3, false);
+  for (size_t i = 0; i < front.size(); ++i) {
+    on_front[front[i]["config"].get<size_t>()] = true;
+    if (i > 0) {
+      EXPECT_GE(front[i]["total_ms"].get<double>(), front[i - 1]["total_ms"].get<double>());
+      EXPECT_LT(front[i]["flip"].get<double>(), front[i - 1]["flip"].get<double>());
+    }
+  }
+  for (size_t c = 0; c < 3; ++c) {
+    if (on_front[c]) continue;
+    const double ms = doc["configs"][c]["total_ms"], flip = doc["configs"][c]["full"]["flip"];
+    bool beaten = false;
+    for (const auto& f : front) beaten |= f["total_ms"] <= ms && f["flip"] <= flip;
+    EXPECT_TRUE(beaten) << doc["configs"][c]["name"];
+  }
+
+  const std::string svg = slurp(dir_ / "out" / "cornell_box.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
+  for (const char* text : {"Pareto front", "path tracing (spp)", "16 rays", "small maps"}) {
+    EXPECT_NE(svg.find(text), std::string::npos) << text;
+  }
+}
+
+TEST_F(ParetoCliTest, BadFlagsAreRefusedByName) {
+  CliRun run = eval("scenes/cornell_box.gltf --pt-max-spp 0 --pareto '" + dir_.string() + "'");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("pt-max-spp"), std::string::npos) << run.err;
+  run = eval(
+      "scenes/cornell_box.gltf --width 16 --height 12 --spp 1 --warmup 1 --frames 1 "
+      "--pt-max-spp 1 --pareto /nonexistent/ddgi-pareto");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("/nonexistent/ddgi-pareto"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace ddgi::test
