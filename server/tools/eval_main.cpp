@@ -39,7 +39,8 @@ each configuration, warm a field up, render the full and the indirect view, and 
 SSIM and mean FLIP (on the tone-mapped images, one exposure per scene chosen from the
 reference so its log-average luminance maps to 0.18), the mean linear luminance over the
 reference's ("mean/ref": 1 when the field neither loses nor adds light) and the median GPU ms
-of a frame.
+of a field update and of the frame's own passes (primary, direct, indirect, tone mapping;
+readbacks not included).
 
   --width N --height N  image size                                     [480 x 270]
   --spp N               reference samples per pixel                    [1024]
@@ -223,9 +224,13 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   tools::PassTable table;
   FrameResult full;
   for (int64_t f = 0; f < job.frames; ++f) {
+    // Only the last frame is scored: the others skip the 16-bytes-per-pixel HDR readback, whose
+    // host copies would leave the GPU idle (and its clocks falling) between timed frames.
+    settings.read_radiance = f + 1 == job.frames;
     DDGI_ASSIGN_OR_RETURN(full, frame(View::kFull));
     table.add(full.pass_times);
   }
+  settings.read_radiance = true;
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
   tools::ConfigPoint point{config.name, assignments};
   DDGI_ASSIGN_OR_RETURN(point.full, score(refs.full.ldr, refs.full.radiance, full.ldr,
@@ -233,7 +238,7 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   DDGI_ASSIGN_OR_RETURN(point.indirect, score(refs.second.ldr, refs.second.radiance, indirect.ldr,
                                               indirect.radiance, job.width, job.height));
   point.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
-  point.frame_ms = table.others_median(vk::PassGroup::kIrradianceField);
+  point.frame_ms = table.group_median(vk::PassGroup::kFrame);
   point.field_mib = double(field_gpu_bytes(gi->field()->params())) / (1024.0 * 1024.0);
   std::string tag = config.name;
   std::replace(tag.begin(), tag.end(), ' ', '-');
@@ -261,6 +266,8 @@ Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context
                                                             const ReferencePair& refs) {
   DDGI_ASSIGN_OR_RETURN(auto gpu, GpuScene::create(context, scene));
   DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu, context.default_backend()));
+  // Untimed images first, so the GPU's clocks are up when timing starts.
+  for (int warm = 0; warm < 4; ++warm) DDGI_TRY(tracer->accumulate(refs.settings, 4));
   std::vector<tools::PathTracePoint> curve;
   for (uint32_t spp = 1; spp <= job.pt_max_spp; spp *= 2) {
     std::vector<double> times;  // one image per timed frame; the median counts
@@ -280,23 +287,27 @@ Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context
   return curve;
 }
 
-// After the table: per scene, each front point against the path tracer at the same ms.
+// After the table: per scene, each front point against the path tracer: its FLIP at the same
+// ms, and the ms it needs for the same FLIP ("-": outside the traced spp range).
 void print_fronts(const std::vector<tools::SceneTrade>& trades) {
   std::printf(
-      "\n| scene | front point | GPU ms | FLIP | path tracing FLIP, same ms | ratio |\n"
-      "|---|---|---|---|---|---|\n");
+      "\n| scene | front point | GPU ms | FLIP | path tracing FLIP, same ms | ratio | path "
+      "tracing ms, same FLIP |\n|---|---|---|---|---|---|---|\n");
+  auto text = [](std::optional<double> value) {
+    char buffer[32] = "-";
+    if (value) std::snprintf(buffer, sizeof(buffer), "%.4g", *value);
+    return std::string(buffer);
+  };
   for (const tools::SceneTrade& trade : trades) {
     for (size_t i : tools::pareto_front(trade.configs)) {
       const tools::ConfigPoint& c = trade.configs[i];
       const std::optional<double> traced =
           tools::path_trace_flip_at(trade.path_tracing, c.total_ms());
-      if (traced) {
-        std::printf("| %s | %s | %.3f | %.4f | %.4f | %.2f |\n", trade.scene.c_str(),
-                    c.name.c_str(), c.total_ms(), c.full.flip, *traced, c.full.flip / *traced);
-      } else {
-        std::printf("| %s | %s | %.3f | %.4f | (outside the traced spp range) | |\n",
-                    trade.scene.c_str(), c.name.c_str(), c.total_ms(), c.full.flip);
-      }
+      const std::optional<double> ratio =
+          traced && *traced > 0.0 ? std::optional<double>(c.full.flip / *traced) : std::nullopt;
+      std::printf("| %s | %s | %.3f | %.4f | %s | %s | %s |\n", trade.scene.c_str(), c.name.c_str(),
+                  c.total_ms(), c.full.flip, text(traced).c_str(), text(ratio).c_str(),
+                  text(tools::path_trace_ms_for(trade.path_tracing, c.full.flip)).c_str());
     }
   }
 }

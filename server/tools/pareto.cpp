@@ -80,6 +80,20 @@ std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& poin
   return std::nullopt;
 }
 
+std::optional<double> path_trace_ms_for(const std::vector<PathTracePoint>& points, double flip) {
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    const PathTracePoint &a = points[i], &b = points[i + 1];
+    const double fa = a.full.flip, fb = b.full.flip;
+    if (!(a.ms > 0.0 && b.ms > 0.0) || fa == fb || flip > std::max(fa, fb) ||
+        flip < std::min(fa, fb)) {
+      continue;
+    }
+    const double t = (flip - fa) / (fb - fa);
+    return a.ms * std::pow(b.ms / a.ms, t);
+  }
+  return std::nullopt;
+}
+
 Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
   const std::vector<size_t> front = pareto_front(trade.configs);
   json doc = {{"scene", trade.scene},     {"width", trade.width},
@@ -99,6 +113,8 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
     entry["path_trace_flip_same_ms"] = traced ? json(*traced) : json(nullptr);
     entry["flip_over_path_trace"] =
         traced && *traced > 0.0 ? json(c.full.flip / *traced) : json(nullptr);
+    const std::optional<double> match = path_trace_ms_for(trade.path_tracing, c.full.flip);
+    entry["path_trace_ms_same_flip"] = match ? json(*match) : json(nullptr);
     doc["front"].push_back(entry);
   }
   DDGI_TRY(write_text_file(dir + "/" + trade.scene + ".json", doc.dump(2) + "\n"));

@@ -47,6 +47,10 @@ TEST(Pareto, PathTraceFlipAtEqualTime) {
   EXPECT_NEAR(*tools::path_trace_flip_at(curve, 16.0), 0.1, 1e-12);
   EXPECT_FALSE(tools::path_trace_flip_at(curve, 0.5).has_value());
   EXPECT_FALSE(tools::path_trace_flip_at(curve, 17.0).has_value());
+  // And the other way: the ms for a FLIP, at the geometric mean where the FLIP is the mean.
+  EXPECT_NEAR(*tools::path_trace_ms_for(curve, 0.3), 2.0, 1e-9);
+  EXPECT_NEAR(*tools::path_trace_ms_for(curve, 0.15), 8.0, 1e-9);
+  EXPECT_FALSE(tools::path_trace_ms_for(curve, 0.05).has_value());
 }
 
 class ParetoCliTest : public ::testing::Test {
