@@ -32,4 +32,11 @@ $SUDO apt-get install -y -q --no-install-recommends \
 
 $SUDO apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 
+# The web client's browser tests (tests/web): Debian's chromium, headless, and Node.js with npm
+# for puppeteer-core (Debian's when the machine has none of its own).
+$SUDO apt-get install -y -q --no-install-recommends chromium
+if ! command -v npm >/dev/null; then
+  $SUDO apt-get install -y -q --no-install-recommends nodejs npm
+fi
+
 echo "dependencies installed"

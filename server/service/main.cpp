@@ -43,6 +43,10 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --auth-token-file FILE    require "authorization: Bearer <token>" (token read from FILE)
   --metrics-port N          Prometheus metrics at http://ADDRESS:N/metrics; -1: off  [9464]
   --metrics-address A       IPv4 address of the metrics endpoint    [0.0.0.0]
+  --web-port N              the browser client at http://ADDRESS:N/ (docs/web.md); -1: off  [-1]
+  --web-address A           IPv4 address of the web front            [0.0.0.0]
+  --web-root DIR            the web client's files                   [the repo's web/]
+  --web-max-connections N   browsers connected at once, 1..1024      [32]
   --encode-threads N        JPEG encoder threads, 1..64; also the most  [2]
                             strips one frame is compressed in at once
   --shutdown-grace S        seconds for streams and sessions to end  [5]
@@ -51,6 +55,14 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --validation              Vulkan validation layers (any message is logged)
   --log-level L             debug | info | warning | error           [info]
 )";
+
+std::string default_web_root() {
+#ifdef DDGI_DEFAULT_WEB_ROOT
+  return DDGI_DEFAULT_WEB_ROOT;
+#else
+  return "web";
+#endif
+}
 
 std::string default_scene_root() {
 #ifdef DDGI_DEFAULT_SCENE_ROOT
@@ -99,6 +111,10 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "auth-token-file",
                        "metrics-port",
                        "metrics-address",
+                       "web-port",
+                       "web-address",
+                       "web-root",
+                       "web-max-connections",
                        "encode-threads",
                        "shutdown-grace",
                        "device",
@@ -165,6 +181,13 @@ Result<ServerOptions> server_options(const Flags& flags) {
   options.metrics_port = static_cast<int>(metrics_port);
   DDGI_ASSIGN_OR_RETURN(options.metrics_address,
                         flags.get_string("metrics-address", options.metrics_address));
+  DDGI_ASSIGN_OR_RETURN(const int64_t web_port, flags.get_int("web-port", -1, -1, 65535));
+  options.web.port = static_cast<int>(web_port);
+  DDGI_ASSIGN_OR_RETURN(options.web.address, flags.get_string("web-address", options.web.address));
+  DDGI_ASSIGN_OR_RETURN(options.web.root, flags.get_string("web-root", default_web_root()));
+  DDGI_ASSIGN_OR_RETURN(const int64_t web_connections,
+                        flags.get_int("web-max-connections", options.web.max_connections, 1, 1024));
+  options.web.max_connections = static_cast<int>(web_connections);
   DDGI_ASSIGN_OR_RETURN(const int64_t encode_threads, flags.get_int("encode-threads", 2, 1, 64));
   options.encode_threads = static_cast<unsigned>(encode_threads);
   DDGI_ASSIGN_OR_RETURN(const double grace, flags.get_double("shutdown-grace", 5.0, 0.1, 600.0));
@@ -255,6 +278,9 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
   if (!port_file.empty()) write_port_file(port_file, server->port());
   std::printf("ddgi-server: listening on port %d\n", server->port());
+  if (server->web_port() >= 0) {
+    std::printf("ddgi-server: web client at http://localhost:%d/\n", server->web_port());
+  }
   std::fflush(stdout);
   serve_until_stopped(*server, signals, options.shutdown_grace);
   server.reset();

@@ -85,6 +85,17 @@ std::string Metrics::prometheus_text() const {
                double(frames_dropped.load()));
   write_scalar(out, "ddgi_field_updates_total", "counter", "Irradiance field updates.",
                double(field_updates.load()));
+  write_scalar(out, "ddgi_web_connections", "gauge", "Open WebSockets of the web front.",
+               double(web_connections.load()));
+  write_scalar(out, "ddgi_web_frames_sent_total", "counter", "Frames written to WebSockets.",
+               double(web_frames_sent.load()));
+  write_scalar(out, "ddgi_web_frames_dropped_total", "counter",
+               "Frames a WebSocket skipped because a newer one came before it was sent.",
+               double(web_frames_dropped.load()));
+  write_scalar(out, "ddgi_web_messages_refused_total", "counter",
+               "WebSocket messages refused before any call (not JSON, not a WebRequest, "
+               "binary, too large).",
+               double(web_messages_refused.load()));
   frame_seconds.write(out, "ddgi_frame_seconds",
                       "Wall time to render one view's frame (GPU submission and readback).");
   gi_update_seconds.write(out, "ddgi_gi_update_seconds",

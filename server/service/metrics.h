@@ -42,6 +42,12 @@ class Metrics {
   std::atomic<uint64_t> frames_sent{0};
   std::atomic<uint64_t> frames_dropped{0};
   std::atomic<uint64_t> field_updates{0};
+  // The web front (web_gateway.h): open WebSockets, frames written to them and skipped for
+  // browsers that read slower than frames come, text messages refused before any RPC.
+  std::atomic<int64_t> web_connections{0};
+  std::atomic<uint64_t> web_frames_sent{0};
+  std::atomic<uint64_t> web_frames_dropped{0};
+  std::atomic<uint64_t> web_messages_refused{0};
 
   Histogram frame_seconds;      // wall time of one view's frame, from recording to readback
   Histogram gi_update_seconds;  // GPU time of one field update

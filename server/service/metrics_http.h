@@ -1,5 +1,5 @@
 // The Prometheus endpoint: GET /metrics over HTTP/1.x on its own port, served by civetweb
-// (Debian's libcivetweb, which also speaks WebSocket for a later browser client). A pool of
+// (civet_server.h, shared with the web client's front). A pool of
 // worker threads takes connections, so a slow or stalled client holds one worker, never the
 // endpoint: a scrape is answered while others trickle. Each request must arrive whole within
 // kRequestDeadlineSeconds of its start (civetweb's request_timeout_ms is measured from the
@@ -7,16 +7,14 @@
 // is off, so a connection carries one request. Other paths are 404, other methods 400.
 #pragma once
 
-#include <netinet/in.h>
-
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "core/result.h"
+#include "service/civet_server.h"
 
 struct mg_connection;
-struct mg_context;
 
 namespace ddgi::service {
 
@@ -31,21 +29,17 @@ class MetricsHttpServer {
   // makes each response and may be called from several threads at once.
   static Result<std::unique_ptr<MetricsHttpServer>> start(const std::string& address, int port,
                                                           std::function<std::string()> body);
-  ~MetricsHttpServer();
   MetricsHttpServer(const MetricsHttpServer&) = delete;
   MetricsHttpServer& operator=(const MetricsHttpServer&) = delete;
 
-  int port() const { return port_; }
+  int port() const { return civet_->port(); }
 
  private:
   MetricsHttpServer() = default;
   static int handle(mg_connection* connection, void* self);
-  void wake_accept_loop() const;
 
-  mg_context* context_ = nullptr;
-  int port_ = 0;
-  in_addr wake_address_{};
   std::function<std::string()> body_;
+  std::unique_ptr<CivetServer> civet_;  // last: stopped first, while body_ is still there
 };
 
 }  // namespace ddgi::service

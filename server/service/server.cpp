@@ -103,11 +103,16 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
         MetricsHttpServer::start(options.metrics_address, options.metrics_port,
                                  [metrics] { return metrics->prometheus_text(); }));
   }
+  if (options.web.port >= 0) {
+    DDGI_ASSIGN_OR_RETURN(server->web_,
+                          WebGateway::start(options.web, server->in_process_channel(), *metrics));
+  }
   LOG_INFO << "ddgi-server listening port=" << server->port_
            << " tls=" << (options.tls_cert_file.empty() ? "off" : "on")
            << " auth=" << (options.auth_token.empty() ? "off" : "on")
            << " reflection=" << (options.reflection ? "on" : "off")
-           << " metrics_port=" << server->metrics_port() << " scene_root=" << options.scene_root;
+           << " metrics_port=" << server->metrics_port() << " web_port=" << server->web_port()
+           << " scene_root=" << options.scene_root;
   return server;
 }
 
@@ -121,6 +126,7 @@ bool Server::shutdown() {
   sessions_->close_all();
   context_.set_device_lost_handler(nullptr);
   bool in_time = sessions_->wait_for_loops(options_.shutdown_grace);
+  web_.reset();  // browsers' streams have ended with their sessions; their sockets close
   if (!in_time) {
     LOG_WARNING << "frame loops still running after the shutdown grace period";
   }

@@ -17,6 +17,7 @@
 #include "service/metrics_http.h"
 #include "service/render_service.h"
 #include "service/session_registry.h"
+#include "service/web_gateway.h"
 #include "vk/context.h"
 
 namespace ddgi::service {
@@ -31,6 +32,7 @@ struct ServerOptions {
   std::string auth_token;  // empty: no auth
   int metrics_port = -1;   // -1: no metrics endpoint; 0: a free port
   std::string metrics_address = "0.0.0.0";
+  WebOptions web;  // the browser client's front (off unless web.port >= 0)
   unsigned encode_threads = 2;
   std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
   // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
@@ -49,6 +51,7 @@ class Server {
 
   int port() const { return port_; }
   int metrics_port() const { return metrics_http_ ? metrics_http_->port() : -1; }
+  int web_port() const { return web_ ? web_->port() : -1; }
   Metrics& metrics() { return metrics_; }
   // A channel to this server inside the process (no socket): the request fuzzer's.
   std::shared_ptr<grpc::Channel> in_process_channel();
@@ -72,6 +75,7 @@ class Server {
   std::unique_ptr<RenderServiceImpl> service_;
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<MetricsHttpServer> metrics_http_;
+  std::unique_ptr<WebGateway> web_;
   int port_ = 0;
   bool shut_down_ = false;
 };

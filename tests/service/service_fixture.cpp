@@ -1,7 +1,10 @@
 #include "tests/service/service_fixture.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
 #include "encode/jpeg.h"
 
@@ -223,6 +226,20 @@ double mean_level(const encode::ImageRgba8& image) {
     count += 3;
   }
   return count ? sum / double(count) : 0.0;
+}
+
+double stall_seconds() {
+  const char* text = std::getenv("DDGI_SLOW_READER_SECONDS");
+  if (text == nullptr || *text == '\0') return 10.0;
+  const double value = std::atof(text);
+  return value >= 1.0 && value <= 600.0 ? value : 10.0;
+}
+
+double resident_mib() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
 v1::Camera look_at(float px, float py, float pz, float tx, float ty, float tz, float fov) {

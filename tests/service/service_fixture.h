@@ -108,6 +108,12 @@ encode::ImageRgba8 decode(const v1::Frame& frame);
 // Mean of the RGB channels of an image, in [0, 255].
 double mean_level(const encode::ImageRgba8& image);
 
+// How long the slow-reader tests stall a client: 10 s, or DDGI_SLOW_READER_SECONDS (1..600)
+// for quicker local runs.
+double stall_seconds();
+// Resident memory of this process (server and clients together), from /proc.
+double resident_mib();
+
 v1::Camera look_at(float px, float py, float pz, float tx, float ty, float tz, float fov = 40.0f);
 
 }  // namespace ddgi::test

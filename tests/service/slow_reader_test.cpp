@@ -2,31 +2,11 @@
 // (memory flat), count the frames it skips (the drop counter rises), and keep serving everyone
 // else at their rate: a client on another session, and another view on the slow client's own
 // session (whose frame loop renders the stalled view too). The stall lasts 10 s, as the
-// acceptance asks; DDGI_SLOW_READER_SECONDS overrides it (1..600) for quicker local runs.
-#include <unistd.h>
-
-#include <cstdlib>
-#include <fstream>
-
+// acceptance asks; DDGI_SLOW_READER_SECONDS overrides it (stall_seconds()).
 #include "tests/service/service_fixture.h"
 
 namespace ddgi::test {
 namespace {
-
-double stall_seconds() {
-  const char* text = std::getenv("DDGI_SLOW_READER_SECONDS");
-  if (text == nullptr || *text == '\0') return 10.0;
-  const double value = std::atof(text);
-  return value >= 1.0 && value <= 600.0 ? value : 10.0;
-}
-
-// Resident memory of this process (server and clients together), from /proc.
-double resident_mib() {
-  std::ifstream statm("/proc/self/statm");
-  long pages = 0, resident = 0;
-  statm >> pages >> resident;
-  return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
-}
 
 class SlowReaderTest : public ServiceTest {
  protected:

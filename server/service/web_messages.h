@@ -1,0 +1,31 @@
+// The web client's messages (proto/ddgi/v1/web.proto) to and from the bytes of WebSocket
+// messages: requests and replies as proto3 JSON (protobuf's own parser and printer, no
+// hand-written JSON), frames as a length-prefixed JSON header followed by the JPEG.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "core/result.h"
+#include "ddgi/v1/web.pb.h"
+
+namespace ddgi::service {
+
+// A text message from a browser: one WebRequest in proto3 JSON. Unknown fields, wrong types
+// and a request without a call are INVALID_ARGUMENT naming what is wrong.
+Result<v1::WebRequest> parse_web_request(std::string_view text);
+
+// The JSON text of a reply (fields at their defaults included, so the page sees every value).
+std::string web_reply_text(const v1::WebReply& reply);
+// A reply that refuses request `id` with `status`.
+v1::WebReply web_error_reply(uint64_t id, const grpc::Status& status);
+
+// A frame as the binary message the page reads: a 4-byte little-endian length N, N bytes of
+// the JSON of `frame` without its jpeg (frames_dropped raised by `more_dropped`, the frames
+// the WebSocket side skipped), then the JPEG bytes.
+std::string web_frame_message(const v1::Frame& frame, uint64_t more_dropped);
+
+}  // namespace ddgi::service

@@ -1,0 +1,189 @@
+// Browser tests of the web client (web/, docs/web.md) in Debian's headless chromium, driven by
+// puppeteer-core, against a real ddgi-server process (lavapipe in CI, Vulkan validation on: a
+// validation message makes the server exit non-zero, which fails the test).
+//
+//   node tests/web/browser_test.mjs DDGI_SERVER SCENE_ROOT [CHROMIUM]
+//
+// What a person does, checked the way they would see it: the page asks for a token and shows
+// the server's refusal of a wrong one; with the right one it lists the scenes; "Create session"
+// shows a frame within a deadline, and a drag on the frame moves the camera: the next frames
+// carry the camera command (lastCommandSeq) and differ from the one before the drag by far more
+// than frames of a still camera differ from each other (the control).
+import { spawn } from 'node:child_process';
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { createInterface } from 'node:readline';
+
+const [serverPath, sceneRoot, chromiumPath = '/usr/bin/chromium'] = process.argv.slice(2);
+if (!serverPath || !sceneRoot) {
+  console.error('usage: node browser_test.mjs DDGI_SERVER SCENE_ROOT [CHROMIUM]');
+  process.exit(2);
+}
+
+// puppeteer-core comes from npm (tests/web/package-lock.json), installed by tests/run_all.sh.
+const puppeteer = await import('puppeteer-core').then((module) => module.default, () => {
+  console.error('puppeteer-core is not installed: run `npm ci --prefix tests/web` ' +
+    '(tests/run_all.sh does)');
+  process.exit(2);
+});
+
+const TOKEN = 'browser-test-token-4711';
+const FIRST_FRAME_DEADLINE_MS = 180_000; // session load + warm-up on lavapipe
+const COMMAND_DEADLINE_MS = 60_000;
+// Mean absolute difference of RGB in [0, 255]: a drag must change the image by more than this,
+// and by more than 4x what two frames of a still camera differ by.
+const MIN_DRAG_CHANGE = 4.0;
+
+function check(condition, what) {
+  if (!condition) throw new Error(`FAILED: ${what}`);
+  console.log(`ok: ${what}`);
+}
+
+// Starts ddgi-server with the web front on a free port; resolves once it prints the page's URL.
+function startServer(args) {
+  const server = spawn(serverPath, [
+    '--listen', '127.0.0.1:0', '--metrics-port', '-1', '--web-port', '0',
+    '--web-address', '127.0.0.1', '--scene-root', sceneRoot, '--validation', ...args,
+  ], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
+  const url = new Promise((resolve, reject) => {
+    createInterface({ input: server.stdout }).on('line', (line) => {
+      console.log(`[server] ${line}`);
+      const match = line.match(/web client at (http:\/\/\S+)/);
+      if (match) resolve(match[1]);
+    });
+    exited.then(({ code }) => reject(new Error(`ddgi-server exited (${code}) before serving`)));
+  });
+  return { server, url, exited };
+}
+
+async function stopServer({ server, exited }) {
+  server.kill('SIGTERM');
+  const { code, signal } = await exited;
+  check(code === 0, `ddgi-server stopped cleanly (exit ${code}${signal ? `, ${signal}` : ''}; ` +
+    'non-zero after Vulkan validation messages)');
+}
+
+// The canvas's pixels as RGB means: [mean brightness, pixels].
+async function canvasPixels(page) {
+  return page.evaluate(() => {
+    const canvas = document.getElementById('frame');
+    const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    const rgb = [];
+    for (let i = 0; i < data.length; i += 4) rgb.push(data[i], data[i + 1], data[i + 2]);
+    return rgb;
+  });
+}
+
+function meanAbsDifference(a, b) {
+  if (a.length !== b.length) return Infinity;
+  let sum = 0;
+  for (let i = 0; i < a.length; i += 1) sum += Math.abs(a[i] - b[i]);
+  return sum / a.length;
+}
+
+const mean = (a) => a.reduce((s, v) => s + v, 0) / a.length;
+
+async function waitForFrames(page, count, deadline) {
+  await page.waitForFunction((n) => window.ddgi.frames >= n, { timeout: deadline, polling: 100 },
+    count);
+}
+
+async function tokenIsAskedForAndChecked(page) {
+  await page.waitForSelector('#error:not([hidden])', { timeout: 30_000 });
+  const first = await page.$eval('#error', (e) => e.textContent);
+  check(first.includes('refused the access token'), `without a token the page says so: "${first.slice(0, 80)}…"`);
+  check(await page.$eval('#auth', (e) => !e.hidden), 'the token field is shown');
+
+  await page.type('#token', 'not-the-token');
+  await page.click('#connect');
+  await page.waitForFunction(() => document.getElementById('error').textContent.includes('wrong')
+    || document.getElementById('error').textContent.includes('refused'), { timeout: 30_000 });
+  check(!(await page.$eval('#auth', (e) => e.hidden)), 'a wrong token is refused, the field stays');
+
+  await page.$eval('#token', (e) => { e.value = ''; });
+  await page.type('#token', TOKEN);
+  await page.click('#connect');
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('connected'),
+    { timeout: 30_000 });
+  const scenes = await page.$$eval('#scene option', (options) => options.map((o) => o.value));
+  check(scenes.includes('cornell_box'), `with the token the scene library is listed (${scenes.length} scenes)`);
+  check(await page.$eval('#error', (e) => e.hidden), 'the error is gone');
+}
+
+async function streamShowsAndDragMovesTheCamera(page) {
+  await page.select('#scene', 'cornell_box');
+  const created = Date.now();
+  await page.click('#create');
+  await waitForFrames(page, 1, FIRST_FRAME_DEADLINE_MS);
+  console.log(`first frame after ${Date.now() - created} ms`);
+  // Frames of a still camera: the control for what a drag changes.
+  await waitForFrames(page, (await page.evaluate(() => window.ddgi.frames)) + 3, COMMAND_DEADLINE_MS);
+  const still1 = await canvasPixels(page);
+  await waitForFrames(page, (await page.evaluate(() => window.ddgi.frames)) + 2, COMMAND_DEADLINE_MS);
+  const still2 = await canvasPixels(page);
+  const brightness = mean(still1);
+  check(brightness > 10, `the frame is not black (mean ${brightness.toFixed(1)} of 255)`);
+  const stillChange = meanAbsDifference(still1, still2);
+  const before = await page.evaluate(() => ({
+    seq: Number(window.ddgi.lastFrame.lastCommandSeq),
+    position: window.ddgi.lastFrame.camera.position,
+  }));
+
+  const box = await (await page.$('#frame')).boundingBox();
+  const x = box.x + box.width / 2;
+  const y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x + box.width * 0.25, y, { steps: 5 });
+  await page.mouse.up();
+  // The frame that shows the drag carries its command (the page's latency measurement).
+  await page.waitForFunction(() => window.ddgi.stats.commands.length === 0 && window.ddgi.stats.latencyMs !== null,
+    { timeout: COMMAND_DEADLINE_MS, polling: 50 });
+  await waitForFrames(page, (await page.evaluate(() => window.ddgi.frames)) + 2, COMMAND_DEADLINE_MS);
+  const after = await page.evaluate(() => ({
+    seq: Number(window.ddgi.lastFrame.lastCommandSeq),
+    position: window.ddgi.lastFrame.camera.position,
+    latency: window.ddgi.stats.latencyMs,
+  }));
+  const moved = await canvasPixels(page);
+  const dragChange = meanAbsDifference(still2, moved);
+  check(after.seq > before.seq, `the frames after the drag carry its command (seq ${before.seq} -> ${after.seq}, latency ${after.latency.toFixed(0)} ms)`);
+  check(JSON.stringify(after.position) !== JSON.stringify(before.position), 'the camera moved');
+  check(dragChange > MIN_DRAG_CHANGE && dragChange > 4 * stillChange,
+    `the image changed with the drag: mean |diff| ${dragChange.toFixed(2)} (> ${MIN_DRAG_CHANGE} and > 4x the still camera's ${stillChange.toFixed(2)})`);
+  const shown = await page.$eval('#fps', (e) => e.textContent);
+  check(Number(shown) > 0, `the page shows frames/s (${shown})`);
+}
+
+async function main() {
+  const dir = mkdtempSync(join(tmpdir(), 'ddgi-web-'));
+  const tokenFile = join(dir, 'token');
+  writeFileSync(tokenFile, `${TOKEN}\n`);
+  const server = startServer(['--auth-token-file', tokenFile]);
+  const url = await server.url;
+  const browser = await puppeteer.launch({
+    executablePath: chromiumPath,
+    headless: true,
+    args: ['--no-sandbox', '--headless=new'],
+  });
+  let failed = null;
+  try {
+    const page = await browser.newPage();
+    await page.setViewport({ width: 640, height: 320 });
+    page.on('pageerror', (error) => { failed ??= new Error(`page error: ${error.message}`); });
+    await page.goto(url);
+    await tokenIsAskedForAndChecked(page);
+    await streamShowsAndDragMovesTheCamera(page);
+    if (failed) throw failed;
+  } finally {
+    await browser.close();
+    await stopServer(server);
+  }
+}
+
+main().then(() => console.log('all browser tests passed'), (error) => {
+  console.error(error.stack || error.message);
+  process.exit(1);
+});
