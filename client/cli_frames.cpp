@@ -1,5 +1,6 @@
-// ddgi-client commands that fetch frames: one (RenderFrame) or a stream (StreamFrames), with
-// optional camera moves that measure the latency from a command to the first frame showing it.
+// ddgi-client commands that fetch frames: one (RenderFrame) or a stream (StreamFrames, or the
+// web front's WebSocket with --web), with optional camera moves that measure the latency from a
+// command to the first frame showing it.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -7,6 +8,8 @@
 #include <condition_variable>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -18,6 +21,8 @@
 #include "cli.h"
 #include "encode/jpeg.h"
 #include "encode/write_image.h"
+#include "rpc/status_code_name.h"
+#include "rpc/web_link.h"
 
 namespace ddgi::client {
 namespace {
@@ -128,7 +133,9 @@ Result<StreamOptions> stream_options(const Flags& flags, v1::StreamFramesRequest
 // the first frame that shows it.
 class CameraMover {
  public:
-  CameraMover(const Cli& cli, int64_t moves, double interval) : cli_(cli) {
+  using SetCamera = std::function<grpc::Status(const v1::SetCameraRequest&, v1::ViewInfo*)>;
+  CameraMover(SetCamera set_camera, int64_t moves, double interval)
+      : set_camera_(std::move(set_camera)) {
     if (moves > 0) thread_ = std::thread([this, moves, interval] { run(moves, interval); });
   }
   ~CameraMover() { finish(); }
@@ -184,9 +191,8 @@ class CameraMover {
       move.set_view_id(initial.view_id());
       *move.mutable_camera() = yawed(initial.camera(), (i % 2 == 0) ? 2.0 : 0.0);
       v1::ViewInfo reply;
-      auto context = cli_.context();
       const auto sent = Clock::now();
-      const grpc::Status status = cli_.stub->SetCamera(context.get(), move, &reply);
+      const grpc::Status status = set_camera_(move, &reply);
       std::lock_guard<std::mutex> lock(mutex_);
       if (!status.ok()) {
         error_ = status.error_message();
@@ -196,7 +202,7 @@ class CameraMover {
     }
   }
 
-  const Cli& cli_;
+  SetCamera set_camera_;
   std::mutex mutex_;
   std::condition_variable first_frame_;
   std::optional<v1::Frame> first_;
@@ -217,12 +223,84 @@ struct StreamTotals {
   bool server_ended = false;
 };
 
+// Where a stream's frames come from and its camera moves go: the gRPC stream, or the web
+// front's WebSocket (--web PORT), so that the two are measured the same way.
+struct StreamLink {
+  std::function<bool(v1::Frame*)> next;  // false: the server ended the stream
+  CameraMover::SetCamera set_camera;
+  // Ends the stream (when the server has not) and says how it ended.
+  std::function<grpc::Status(bool server_ended)> finish;
+};
+
+StreamLink grpc_link(Cli& cli, const v1::StreamFramesRequest& request) {
+  std::shared_ptr<grpc::ClientContext> context = cli.context(false);  // lives until we are done
+  std::shared_ptr<grpc::ClientReader<v1::Frame>> reader =
+      cli.stub->StreamFrames(context.get(), request);
+  StreamLink link;
+  link.next = [reader](v1::Frame* frame) { return reader->Read(frame); };
+  link.set_camera = [&cli](const v1::SetCameraRequest& move, v1::ViewInfo* reply) {
+    auto unary = cli.context();
+    return cli.stub->SetCamera(unary.get(), move, reply);
+  };
+  link.finish = [context, reader](bool server_ended) {
+    // A client ends a stream by cancelling it; the server ends it with a status.
+    if (!server_ended) context->TryCancel();
+    const grpc::Status status = reader->Finish();
+    return server_ended ? status : grpc::Status::OK;
+  };
+  return link;
+}
+
+grpc::Status web_status(const v1::WebReply& reply) {
+  if (!reply.has_error()) return grpc::Status::OK;
+  return grpc::Status(status_code_from_name(reply.error().code()), reply.error().message());
+}
+
+// The same stream through the web front at HOST:port (HOST from --server), as a browser gets it.
+Result<StreamLink> web_link(Cli& cli, const v1::StreamFramesRequest& request, int port) {
+  const std::string& server = cli.connection.server;
+  const std::string host = server.substr(0, server.rfind(':'));
+  DDGI_ASSIGN_OR_RETURN(std::shared_ptr<WebLink> web, WebLink::connect(host, port));
+  v1::WebRequest hello;
+  hello.mutable_hello()->set_token(cli.connection.token);
+  if (grpc::Status said = web_status(web->call(hello)); !said.ok()) {
+    return unavailable("the web front refused hello: " + said.error_message());
+  }
+  v1::WebRequest stream;
+  *stream.mutable_stream_frames() = request;
+  const v1::WebReply started = web->call(stream);
+  if (!started.has_stream_started()) return unavailable(web_status(started).error_message());
+  const uint64_t stream_id = started.id();
+  auto ended = std::make_shared<v1::WebReply>();
+  StreamLink link;
+  link.next = [web, stream_id, ended](v1::Frame* frame) {
+    while (!web->next_frame(frame, 0.1)) {
+      if (web->wait_reply(stream_id, ended.get(), 0.0) || web->closed()) return false;
+    }
+    return true;
+  };
+  link.set_camera = [web](const v1::SetCameraRequest& move, v1::ViewInfo* reply) {
+    v1::WebRequest call;
+    *call.mutable_set_camera() = move;
+    const v1::WebReply answer = web->call(call);
+    *reply = answer.view();
+    return web_status(answer);
+  };
+  link.finish = [web, ended](bool server_ended) {
+    if (!server_ended) return grpc::Status::OK;  // closing the link ends the stream
+    if (!ended->has_stream_ended()) return grpc::Status(grpc::StatusCode::UNAVAILABLE, "closed");
+    const v1::WebStreamEnded& how = ended->stream_ended();
+    return grpc::Status(status_code_from_name(how.code()), how.message());
+  };
+  return link;
+}
+
 // Reads frames until --frames or --seconds, or until the server ends the stream.
-Status read_stream(grpc::ClientReader<v1::Frame>& reader, const StreamOptions& o,
-                   Clock::time_point start, CameraMover& mover, StreamTotals& totals) {
+Status read_stream(StreamLink& link, const StreamOptions& o, Clock::time_point start,
+                   CameraMover& mover, StreamTotals& totals) {
   v1::Frame frame;
   while (totals.count < o.max_frames) {
-    if (!reader.Read(&frame)) {
+    if (!link.next(&frame)) {
       totals.server_ended = true;
       break;
     }
@@ -282,20 +360,24 @@ nlohmann::json stream_summary(const StreamTotals& t, double seconds, int64_t cam
 int stream(Cli& cli) {
   v1::StreamFramesRequest request;
   DDGI_CLI_TRY(const StreamOptions options, stream_options(cli.flags, request));
-  auto context = cli.context(false);  // a stream lives until we have what we want
-  auto reader = cli.stub->StreamFrames(context.get(), request);
+  DDGI_CLI_TRY(const int64_t web_port, cli.flags.get_int("web", 0, 0, 65535));
+  StreamLink link;
+  if (web_port > 0) {
+    DDGI_CLI_TRY(link, web_link(cli, request, int(web_port)));
+  } else {
+    link = grpc_link(cli, request);
+  }
   const auto start = Clock::now();
-  CameraMover mover(cli, options.camera_moves, options.move_interval);
+  CameraMover mover(link.set_camera, options.camera_moves, options.move_interval);
   StreamTotals totals;
-  if (Status read = read_stream(*reader, options, start, mover, totals); !read.ok()) {
+  if (Status read = read_stream(link, options, start, mover, totals); !read.ok()) {
     return report(read.error());
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const std::string move_error = mover.finish();
-  // A client ends a stream by cancelling it; the server ends it with a status.
-  if (!totals.server_ended) context->TryCancel();
-  const grpc::Status status = reader->Finish();
-  if (totals.server_ended && !status.ok()) return report(status);
+  if (const grpc::Status status = link.finish(totals.server_ended); !status.ok()) {
+    return report(status);
+  }
   if (!move_error.empty()) {
     return report(grpc::Status(grpc::StatusCode::UNKNOWN, "camera move: " + move_error));
   }
@@ -322,16 +404,17 @@ void add_frame_commands(std::vector<CommandSpec>& commands) {
                       frame});
   std::vector<std::string> stream_flags = frame_flags;
   for (const char* name : {"frames", "seconds", "max-fps", "out-dir", "camera-moves",
-                           "move-interval", "stall-after", "stall-seconds"}) {
+                           "move-interval", "stall-after", "stall-seconds", "web"}) {
     stream_flags.push_back(name);
   }
   commands.push_back({"stream",
                       "--session ID (--view V | settings as frame) [--frames N] [--seconds S] "
                       "[--max-fps X] [--out LAST.jpg] [--out-dir DIR] [--camera-moves N "
-                      "--move-interval S] [--stall-after N --stall-seconds S]",
+                      "--move-interval S] [--stall-after N --stall-seconds S] [--web PORT]",
                       "stream frames; prints fps, drops, GPU/encode times and, with "
                       "--camera-moves, the latency from a camera command to the first frame "
-                      "showing it",
+                      "showing it; --web: through the server's web front on PORT (the "
+                      "WebSocket a browser uses) instead of gRPC",
                       stream_flags,
                       {},
                       stream});

@@ -31,4 +31,8 @@ const char* status_code_name(grpc::StatusCode code) {
   return enum_name(kStatusCodeNames, code, "UNKNOWN");
 }
 
+grpc::StatusCode status_code_from_name(std::string_view name) {
+  return enum_value(kStatusCodeNames, name).value_or(grpc::StatusCode::UNKNOWN);
+}
+
 }  // namespace ddgi

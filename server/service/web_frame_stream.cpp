@@ -1,6 +1,6 @@
 #include "service/web_frame_stream.h"
 
-#include "service/web_messages.h"
+#include "rpc/web_frame.h"
 
 namespace ddgi::service {
 
@@ -61,7 +61,7 @@ void WebFrameStream::write_frames() {
     const std::shared_ptr<const v1::Frame> frame = std::move(slot_);
     const uint64_t dropped = dropped_;
     lock.unlock();
-    const bool sent = send_(web_frame_message(*frame, dropped));
+    const bool sent = send_(encode_web_frame(*frame, dropped));
     lock.lock();
     if (!sent) {
       stopped_ = true;  // the browser is gone: end the call, report nothing

@@ -46,18 +46,4 @@ v1::WebReply web_error_reply(uint64_t id, const grpc::Status& status) {
   return reply;
 }
 
-std::string web_frame_message(const v1::Frame& frame, uint64_t more_dropped) {
-  v1::Frame header = frame;
-  header.clear_jpeg();
-  header.set_frames_dropped(frame.frames_dropped() + more_dropped);
-  const std::string header_text = to_json(header);
-  const uint32_t length = static_cast<uint32_t>(header_text.size());
-  std::string message;
-  message.reserve(4 + header_text.size() + frame.jpeg().size());
-  for (int byte = 0; byte < 4; ++byte) message.push_back(char((length >> (8 * byte)) & 0xff));
-  message += header_text;
-  message += frame.jpeg();
-  return message;
-}
-
 }  // namespace ddgi::service

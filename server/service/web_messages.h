@@ -1,6 +1,6 @@
 // The web client's messages (proto/ddgi/v1/web.proto) to and from the bytes of WebSocket
 // messages: requests and replies as proto3 JSON (protobuf's own parser and printer, no
-// hand-written JSON), frames as a length-prefixed JSON header followed by the JPEG.
+// hand-written JSON). Frames are rpc/web_frame.h's.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -22,10 +22,5 @@ Result<v1::WebRequest> parse_web_request(std::string_view text);
 std::string web_reply_text(const v1::WebReply& reply);
 // A reply that refuses request `id` with `status`.
 v1::WebReply web_error_reply(uint64_t id, const grpc::Status& status);
-
-// A frame as the binary message the page reads: a 4-byte little-endian length N, N bytes of
-// the JSON of `frame` without its jpeg (frames_dropped raised by `more_dropped`, the frames
-// the WebSocket side skipped), then the JPEG bytes.
-std::string web_frame_message(const v1::Frame& frame, uint64_t more_dropped);
 
 }  // namespace ddgi::service

@@ -20,7 +20,8 @@ expect() {  # expect FILE PATTERN: the JSON in FILE contains PATTERN
 }
 
 "$server_bin" --listen 127.0.0.1:0 --port-file "$work/port" --metrics-port -1 \
-  --scene-root "$scene_root" --max-fps 30 --validation >"$work/server.log" 2>&1 &
+  --scene-root "$scene_root" --max-fps 30 --validation --web-port 0 --web-address 127.0.0.1 \
+  >"$work/server.log" 2>&1 &
 server=$!
 for _ in $(seq 1 300); do [ -s "$work/port" ] && break; sleep 0.1; done
 [ -s "$work/port" ] || { cat "$work/server.log"; fail "ddgi-server did not start"; }
@@ -67,6 +68,17 @@ c stream --session "$session" --width 32 --height 24 --frames 6 --camera-moves 1
   --move-interval 0.05 --out-dir "$work" >"$work/stream.json"
 expect "$work/stream.json" '"frames": 6'
 [ -s "$work/frame_000006.jpg" ] || fail "stream --out-dir wrote no frames"
+# The same stream through the web front's WebSocket, as a browser gets it.
+web_port=$(sed -n 's|.*web client at http://localhost:\([0-9]*\)/.*|\1|p' "$work/server.log")
+[ -n "$web_port" ] || fail "ddgi-server printed no web client URL"
+c stream --session "$session" --width 32 --height 24 --frames 6 --camera-moves 1 \
+  --move-interval 0.05 --web "$web_port" >"$work/web_stream.json"
+expect "$work/web_stream.json" '"frames": 6'
+expect "$work/web_stream.json" '"measured": 1'
+if c stream --session s0000000000000000 --web "$web_port" >"$work/web_refused.json" 2>/dev/null; then
+  fail "a web stream of an unknown session succeeded"
+fi
+expect "$work/web_refused.json" '"NOT_FOUND"'
 c atlas --session "$session" --kind irradiance --out "$work/irr.exr" --convert "$work/irr.png" \
   >"$work/atlas.json"
 expect "$work/atlas.json" '"ATLAS_KIND_IRRADIANCE"'

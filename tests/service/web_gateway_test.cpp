@@ -6,8 +6,8 @@
 #include <civetweb.h>
 
 #include "encode/jpeg.h"
+#include "rpc/web_link.h"
 #include "tests/service/service_fixture.h"
-#include "tests/service/web_socket_client.h"
 
 namespace ddgi::test {
 namespace {
@@ -26,10 +26,15 @@ class WebGatewayTest : public ServiceTest {
   }
   int web_port() { return server().web_port(); }
 
+  std::unique_ptr<WebLink> connect() {
+    Result<std::unique_ptr<WebLink>> link = WebLink::connect("127.0.0.1", web_port());
+    EXPECT_TRUE(link.ok()) << link.error().message;
+    return link.ok() ? std::move(*link) : nullptr;
+  }
   // A connected client that said hello with the right token.
-  std::unique_ptr<WebSocketClient> hello_client() {
-    auto client = std::make_unique<WebSocketClient>(web_port());
-    EXPECT_TRUE(client->connected()) << client->connect_error();
+  std::unique_ptr<WebLink> hello_client() {
+    auto client = connect();
+    if (!client) return nullptr;
     v1::WebRequest hello;
     hello.mutable_hello()->set_token(kToken);
     const v1::WebReply reply = client->call(hello);
@@ -39,15 +44,16 @@ class WebGatewayTest : public ServiceTest {
 };
 
 // The refusal (id 0) of the last unreadable message.
-v1::WebError refusal(WebSocketClient& client) {
+v1::WebError refusal(WebLink& client) {
   v1::WebReply reply;
   EXPECT_TRUE(client.wait_reply(0, &reply));
   return reply.error();
 }
 
 TEST_F(WebGatewayTest, CallsGoThroughTheApiWithItsAuthAndValidation) {
-  WebSocketClient client(web_port());
-  ASSERT_TRUE(client.connected()) << client.connect_error();
+  auto link = connect();
+  ASSERT_TRUE(link);
+  WebLink& client = *link;
   v1::WebRequest hello;
   hello.mutable_hello()->set_token("not-the-token");
   v1::WebReply reply = client.call(hello);
@@ -163,17 +169,17 @@ TEST_F(WebGatewayTest, AStreamOfAnUnknownSessionEndsWithItsError) {
 }
 
 TEST_F(WebGatewayTest, ConnectionsBeyondTheLimitAreRefusedAndFreedOnClose) {
-  std::vector<std::unique_ptr<WebSocketClient>> clients;
+  std::vector<std::unique_ptr<WebLink>> clients;
   for (int i = 0; i < 3; ++i) clients.push_back(hello_client());
-  WebSocketClient over(web_port());
-  EXPECT_FALSE(over.connected() && !over.closed()) << "a fourth WebSocket was accepted";
+  Result<std::unique_ptr<WebLink>> over = WebLink::connect("127.0.0.1", web_port());
+  EXPECT_FALSE(over.ok() && !(*over)->closed()) << "a fourth WebSocket was accepted";
   EXPECT_EQ(server().metrics().web_connections.load(), 3);
   clients.pop_back();
   for (int i = 0; i < 100 && server().metrics().web_connections.load() > 2; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_EQ(server().metrics().web_connections.load(), 2) << "a closed connection was not freed";
-  EXPECT_TRUE(hello_client()->connected());
+  EXPECT_TRUE(hello_client()) << "no connection after one was freed";
 }
 
 // The page's files, and nothing else: no listing, no path out of the folder.

@@ -4,8 +4,9 @@
 // frame loop renders the stalled view too, at its rate. As SlowReaderTest does for gRPC.
 #include <malloc.h>
 
+#include "rpc/web_link.h"
 #include "tests/service/service_fixture.h"
-#include "tests/service/web_socket_client.h"
+#include "tests/service/stalled_web_socket.h"
 
 namespace ddgi::test {
 namespace {
@@ -21,7 +22,7 @@ class WebSlowBrowserTest : public ServiceTest {
 };
 
 // Frames per second a client receives over `seconds`.
-double measure_fps(const WebSocketClient& client, double seconds) {
+double measure_fps(const WebLink& client, double seconds) {
   const uint64_t start_frames = client.frames();
   const auto start = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
@@ -33,8 +34,9 @@ double measure_fps(const WebSocketClient& client, double seconds) {
 TEST_F(WebSlowBrowserTest, StalledBrowserCostsNothingAndOthersKeepTheirRate) {
   const double stall = stall_seconds();
   const std::string session = create_session();
-  WebSocketClient healthy(server().web_port());
-  ASSERT_TRUE(healthy.connected()) << healthy.connect_error();
+  Result<std::unique_ptr<WebLink>> link = WebLink::connect("127.0.0.1", server().web_port());
+  ASSERT_TRUE(link.ok()) << link.error().message;
+  WebLink& healthy = **link;
   v1::WebRequest stream;
   stream.mutable_stream_frames()->set_session_id(session);
   stream.mutable_stream_frames()->mutable_settings()->set_width(32);

@@ -53,5 +53,14 @@ TEST(EnumNames, NamesEveryStatusCode) {
   EXPECT_STREQ(status_code_name(static_cast<grpc::StatusCode>(17)), "UNKNOWN");
 }
 
+TEST(EnumNames, StatusCodesComeBackFromTheirNames) {
+  for (int code = 0; code <= 16; ++code) {
+    const auto status = static_cast<grpc::StatusCode>(code);
+    EXPECT_EQ(status_code_from_name(status_code_name(status)), status) << code;
+  }
+  EXPECT_EQ(status_code_from_name("not_found"), grpc::StatusCode::UNKNOWN) << "names are exact";
+  EXPECT_EQ(status_code_from_name(""), grpc::StatusCode::UNKNOWN);
+}
+
 }  // namespace
 }  // namespace ddgi
