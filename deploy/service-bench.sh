@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Streaming benchmark of the render service on a GPU host, client on the same host: frames per
 # second streamed at 1280x720 and 1920x1080, and the latency from a camera command to the first
-# frame that shows it (ddgi-client stream --camera-moves). Results: docs/results/service-bench.md.
+# frame that shows it (ddgi-client stream --camera-moves), through gRPC and through the web
+# front's WebSocket. Results: docs/results/service-bench.md.
 #
 #   deploy/service-bench.sh bundle        # here: Release ddgi-server + ddgi-client-lean, their
 #                                         # SPIR-V and non-glibc libraries, the real scenes used,
@@ -9,7 +10,9 @@
 #   deploy/service-bench.sh run OUT_DIR   # on the GPU host (with the Vulkan loader in .gl/)
 #
 # Environment for `run`: SCENES (default "cornell_box modern_hall living_room"), SIZES (default
-# "1280x720 1920x1080"), SECONDS_PER_RUN (10), ENCODE_THREADS (8), WARMUP (32), MULTI_VIEWS (4)
+# "1280x720 1920x1080"), TRANSPORTS (default "grpc web": each stream once through gRPC and once
+# through the web front's WebSocket, as a browser gets it), SECONDS_PER_RUN (10),
+# ENCODE_THREADS (8), WARMUP (32), MULTI_VIEWS (4)
 # and MULTI_SIZE (1280x720): that many clients streaming views of one session at that size.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -53,7 +56,7 @@ run() {
   local bin="$PWD/$carry/bin"
   "$bin/ddgi-server" --listen 127.0.0.1:0 --port-file "$out/port" --metrics-port 9464 \
     --max-fps 1000 --encode-threads "${ENCODE_THREADS:-8}" --scene-root scenes \
-    >"$out/server.log" 2>&1 &
+    --web-port 8090 --web-address 127.0.0.1 --web-root "$PWD/web" >"$out/server.log" 2>&1 &
   local server=$!
   for _ in $(seq 1 600); do [ -s "$out/port" ] && break; sleep 0.1; done
   local client=("$bin/ddgi-client-lean" --server "127.0.0.1:$(cat "$out/port")" --deadline 600)
@@ -63,15 +66,19 @@ run() {
     local session
     session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/$scene.session.json" | head -n 1)
     for size in ${SIZES:-1280x720 1920x1080}; do
-      scrape >"$out/$scene.$size.metrics.before"
-      "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
-        --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
-        --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
-        --out "$out/$scene.$size.jpg" >"$out/$scene.$size.json"
-      scrape >"$out/$scene.$size.metrics.after"
-      echo "$scene $size: $(tr -d '\n ' <"$out/$scene.$size.json")"
-      grep -E '^ddgi_(frame|gi_update|encode)_seconds_(sum|count)|^ddgi_frames_(rendered|sent|dropped)_total' \
-        "$out/$scene.$size.metrics.after"
+      for transport in ${TRANSPORTS:-grpc web}; do
+        local run="$scene.$size" via=()
+        if [ "$transport" = web ]; then run="$run.web" via=(--web 8090); fi
+        scrape >"$out/$run.metrics.before"
+        "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
+          --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
+          --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
+          --out "$out/$run.jpg" "${via[@]}" >"$out/$run.json"
+        scrape >"$out/$run.metrics.after"
+        echo "$scene $size $transport: $(tr -d '\n ' <"$out/$run.json")"
+        grep -E '^ddgi_(frame|gi_update|encode)_seconds_(sum|count)|^ddgi_(web_)?frames_(rendered|sent|dropped)_total' \
+          "$out/$run.metrics.after"
+      done
     done
     "${client[@]}" close --session "$session" >/dev/null
   done

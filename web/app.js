@@ -16,12 +16,14 @@ const state = {
   viewId: null,
   camera: null, // OrbitCamera, once the first frame of a stream shows where it is
   cameraDirty: false,
+  cameraBusy: false, // a SetCamera is in flight
   stats: new StreamStats(),
   frames: 0,
   lastFrame: null, // the newest frame's header
   decoding: false,
   pendingJpeg: null,
-  lightRange: 1,
+  lightRange: 1, // the scene's default view distance: light sliders' span, WASD step
+  lights: [],
 };
 window.ddgi = state;
 

@@ -20,7 +20,8 @@ export function parseFrameMessage(buffer) {
 }
 
 export class DdgiSocket {
-  // onFrame(header, jpegBytes, messageBytes); onStreamEnded(status); onClose(event)
+  // onFrame(header, jpegBytes, messageBytes); onStreamEnded(status) for the current stream
+  // (the newest streamFrames call; an older one's end is old news); onClose(event)
   constructor(url, { onFrame, onStreamEnded, onClose }) {
     this.nextId = 1;
     this.pending = new Map();
@@ -46,6 +47,7 @@ export class DdgiSocket {
   async call(name, request = {}) {
     await this.opened;
     const id = this.nextId++;
+    if (name === 'streamFrames') this.streamId = id;
     const reply = new Promise((resolve, reject) => this.pending.set(id, { resolve, reject, name }));
     this.ws.send(JSON.stringify({ id: String(id), [name]: request }));
     return reply;
@@ -61,7 +63,7 @@ export class DdgiSocket {
     const id = Number(reply.id);
     const waiting = this.pending.get(id);
     if (reply.streamEnded && (!waiting || waiting.name !== 'stopFrames')) {
-      this.onStreamEnded(reply.streamEnded);
+      if (id === this.streamId) this.onStreamEnded(reply.streamEnded);
       return;
     }
     if (!waiting) {

@@ -22,10 +22,11 @@ which="${1:-all}"
 # ray-tracing pipelines slowly, and the host code under test is the same.
 gpu_filter="${GPU_FILTER:-RenderTest.*:FieldTest.*:ShadowFieldTest.*:PipelinedFramesTest.*:*MaterialsTest.*/0:*FurnaceExtremesTest.*/0}"
 # The service tests where threads meet (session loops, encoder pool, stream reactors, one-off
-# frames, shutdown, the metrics endpoint, GPU faults), to keep CI within its time; the rest
+# frames, shutdown, the metrics endpoint, GPU faults, the web front's streams), to keep CI within its time; the rest
 # (validation, auth, limits) run single requests on the same paths. TSAN_FILTER='*' runs all.
 tsan_filter="E2eTest.*:PipelinedFramesTest.*:PacedPipelineTest.*:MultiViewTest.*:OneOff*:\
-AbandonedSessionTest.*:GpuFaultTest.*:MetricsHttpTest.*:ShutdownTest.*:AtlasChunkingTest.*"
+AbandonedSessionTest.*:GpuFaultTest.*:MetricsHttpTest.*:ShutdownTest.*:AtlasChunkingTest.*:\
+WebGatewayTest.*"
 unit_tests=(ddgi_core_unit_tests ddgi_gi_unit_tests ddgi_image_tests ddgi_scene_tests
             ddgi_vk_unit_tests)
 

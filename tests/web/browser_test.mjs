@@ -3,6 +3,7 @@
 // validation message makes the server exit non-zero, which fails the test).
 //
 //   node tests/web/browser_test.mjs DDGI_SERVER SCENE_ROOT [CHROMIUM]
+//   DDGI_WEB_SCREENSHOT=page.png ... also saves the page as it is at the end (the README's).
 //
 // What a person does, checked the way they would see it: the page asks for a token and shows
 // the server's refusal of a wrong one; with the right one it lists the scenes; "Create session"
@@ -155,6 +156,10 @@ async function streamShowsAndDragMovesTheCamera(page) {
     `the image changed with the drag: mean |diff| ${dragChange.toFixed(2)} (> ${MIN_DRAG_CHANGE} and > 4x the still camera's ${stillChange.toFixed(2)})`);
   const shown = await page.$eval('#fps', (e) => e.textContent);
   check(Number(shown) > 0, `the page shows frames/s (${shown})`);
+  if (process.env.DDGI_WEB_SCREENSHOT) {
+    await page.screenshot({ path: process.env.DDGI_WEB_SCREENSHOT });
+    console.log(`wrote ${process.env.DDGI_WEB_SCREENSHOT}`);
+  }
 }
 
 async function main() {
