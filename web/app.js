@@ -257,8 +257,11 @@ function paramValue(field, name) {
   return field?.params?.find((p) => p.name === name)?.value ?? '';
 }
 
+// Floats come as the server prints them (0.970000029): shown to 4 significant digits.
+const shortNumber = (text) => (text === '' ? '' : String(Number(Number(text).toPrecision(4))));
+
 function showField(field) {
-  $('hysteresis').value = paramValue(field, 'hysteresis');
+  $('hysteresis').value = shortNumber(paramValue(field, 'hysteresis'));
   $('rays').value = paramValue(field, 'rays_per_probe');
   $('field-info').textContent = field?.probes
     ? `${field.probes} probes, ${(Number(field.gpuBytes) / 2 ** 20).toFixed(1)} MiB, ` +
@@ -336,6 +339,22 @@ async function moveLight() {
   }
 }
 
+// A resized window gets frames of its new size (once it has been still for a moment).
+let resizeTimer = null;
+function resized() {
+  clearTimeout(resizeTimer);
+  resizeTimer = setTimeout(async () => {
+    if (!state.viewId) return;
+    try {
+      await state.socket.call('updateView', {
+        sessionId: state.session.sessionId, viewId: state.viewId, settings: frameSize(),
+      });
+    } catch (error) {
+      showError(describe(error));
+    }
+  }, 300);
+}
+
 // ---- Start --------------------------------------------------------------------------------------
 
 function updateStats() {
@@ -357,6 +376,7 @@ function bindControls() {
   for (const axis of ['x', 'y', 'z']) $(`light-${axis}`).addEventListener('input', moveLight);
   bindMouse();
   bindKeys();
+  window.addEventListener('resize', resized);
   setInterval(updateStats, 250);
 }
 

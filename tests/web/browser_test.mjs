@@ -137,7 +137,7 @@ async function streamShowsAndDragMovesTheCamera(page) {
   const y = box.y + box.height / 2;
   await page.mouse.move(x, y);
   await page.mouse.down();
-  await page.mouse.move(x + box.width * 0.25, y, { steps: 5 });
+  await page.mouse.move(x + box.width * 0.1, y + box.height * 0.05, { steps: 5 });
   await page.mouse.up();
   // The frame that shows the drag carries its command (the page's latency measurement).
   await page.waitForFunction(() => window.ddgi.stats.commands.length === 0 && window.ddgi.stats.latencyMs !== null,
@@ -176,7 +176,9 @@ async function main() {
   let failed = null;
   try {
     const page = await browser.newPage();
-    await page.setViewport({ width: 640, height: 320 });
+    // Small frames keep lavapipe quick; the README's screenshot is taken larger.
+    await page.setViewport(process.env.DDGI_WEB_SCREENSHOT ? { width: 1100, height: 640 }
+      : { width: 640, height: 320 });
     page.on('pageerror', (error) => { failed ??= new Error(`page error: ${error.message}`); });
     await page.goto(url);
     await tokenIsAskedForAndChecked(page);
