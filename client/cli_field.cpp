@@ -81,34 +81,10 @@ int atlas(Cli& cli) {
   if (out.empty()) return report(invalid_argument("--out FILE is required (.exr or .raw)"));
   DDGI_CLI_TRY(const std::string convert, cli.flags.get_string("convert", ""));
 
-  auto context = cli.context();
-  auto reader = cli.stub->DumpAtlas(context.get(), request);
-  v1::AtlasChunk chunk;
   v1::AtlasMetadata metadata;
-  bool have_metadata = false;
   std::string bytes;
-  while (reader->Read(&chunk)) {
-    if (chunk.has_metadata()) {
-      metadata = chunk.metadata();
-      have_metadata = true;
-      bytes.reserve(size_t(std::min<uint64_t>(metadata.total_bytes(), 1ull << 32)));
-      continue;
-    }
-    if (!have_metadata || chunk.offset() != bytes.size() ||
-        bytes.size() + chunk.data().size() > metadata.total_bytes()) {
-      context->TryCancel();
-      (void)reader->Finish();
-      return report(grpc::Status(grpc::StatusCode::DATA_LOSS,
-                                 "atlas chunks out of order or beyond the announced size"));
-    }
-    bytes += chunk.data();
-  }
-  const grpc::Status status = reader->Finish();
-  if (!status.ok()) return report(status);
-  if (!have_metadata || bytes.size() != metadata.total_bytes()) {
-    return report(grpc::Status(grpc::StatusCode::DATA_LOSS,
-                               "atlas ended after " + std::to_string(bytes.size()) + " of " +
-                                   std::to_string(metadata.total_bytes()) + " bytes"));
+  if (const grpc::Status status = fetch_atlas(cli, request, &metadata, &bytes); !status.ok()) {
+    return report(status);
   }
   {
     std::ofstream file(out, std::ios::binary);
@@ -165,19 +141,7 @@ Result<std::vector<v1::QueryPoint>> parse_points(const std::string& text) {
 int query(Cli& cli) {
   v1::QueryIrradianceRequest request;
   DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
-  DDGI_CLI_TRY(std::string text, cli.flags.get_string("points", ""));
-  DDGI_CLI_TRY(const std::string file, cli.flags.get_string("points-file", ""));
-  if (!file.empty()) {
-    std::ifstream in(file);
-    if (!in) return report(not_found("cannot read " + file));
-    std::ostringstream content;
-    content << in.rdbuf();
-    text += "\n" + content.str();
-  }
-  DDGI_CLI_TRY(const std::vector<v1::QueryPoint> points, parse_points(text));
-  if (points.empty()) {
-    return report(invalid_argument("give --points 'px,py,pz,nx,ny,nz;...' or --points-file"));
-  }
+  DDGI_CLI_TRY(const std::vector<v1::QueryPoint> points, points_flags(cli.flags));
   for (const v1::QueryPoint& point : points) *request.add_points() = point;
   v1::QueryIrradianceReply reply;
   auto context = cli.context();
@@ -188,6 +152,56 @@ int query(Cli& cli) {
 }
 
 }  // namespace
+
+Result<std::vector<v1::QueryPoint>> points_flags(const Flags& flags) {
+  DDGI_ASSIGN_OR_RETURN(std::string text, flags.get_string("points", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string file, flags.get_string("points-file", ""));
+  if (!file.empty()) {
+    std::ifstream in(file);
+    if (!in) return not_found("cannot read " + file);
+    std::ostringstream content;
+    content << in.rdbuf();
+    text += "\n" + content.str();
+  }
+  DDGI_ASSIGN_OR_RETURN(std::vector<v1::QueryPoint> points, parse_points(text));
+  if (points.empty()) {
+    return invalid_argument("give --points 'px,py,pz,nx,ny,nz;...' or --points-file");
+  }
+  return points;
+}
+
+grpc::Status fetch_atlas(const Cli& cli, const v1::DumpAtlasRequest& request,
+                         v1::AtlasMetadata* metadata, std::string* bytes) {
+  auto context = cli.context();
+  auto reader = cli.stub->DumpAtlas(context.get(), request);
+  v1::AtlasChunk chunk;
+  bool have_metadata = false;
+  bytes->clear();
+  while (reader->Read(&chunk)) {
+    if (chunk.has_metadata()) {
+      *metadata = chunk.metadata();
+      have_metadata = true;
+      bytes->reserve(size_t(std::min<uint64_t>(metadata->total_bytes(), 1ull << 32)));
+      continue;
+    }
+    if (!have_metadata || chunk.offset() != bytes->size() ||
+        bytes->size() + chunk.data().size() > metadata->total_bytes()) {
+      context->TryCancel();
+      (void)reader->Finish();
+      return grpc::Status(grpc::StatusCode::DATA_LOSS,
+                          "atlas chunks out of order or beyond the announced size");
+    }
+    *bytes += chunk.data();
+  }
+  const grpc::Status status = reader->Finish();
+  if (!status.ok()) return status;
+  if (!have_metadata || bytes->size() != metadata->total_bytes()) {
+    return grpc::Status(grpc::StatusCode::DATA_LOSS,
+                        "atlas ended after " + std::to_string(bytes->size()) + " of " +
+                            std::to_string(metadata->total_bytes()) + " bytes");
+  }
+  return grpc::Status::OK;
+}
 
 void add_field_commands(std::vector<CommandSpec>& commands) {
   commands.push_back({"params",

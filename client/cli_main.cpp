@@ -17,6 +17,7 @@ const std::vector<CommandSpec>& commands() {
     add_session_commands(list);
     add_frame_commands(list);
     add_field_commands(list);
+    add_probe_commands(list);
     return list;
   }();
   return all;

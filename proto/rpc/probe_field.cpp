@@ -133,7 +133,7 @@ ProbeVec3 probe_field_irradiance(const ProbeField& f, ProbeVec3 p, ProbeVec3 n,
     }
     const uint32_t probe = uint32_t(coord[0] + f.counts[0] * (coord[1] + f.counts[1] * coord[2]));
     const float* state = &f.probe_states[size_t(probe) * 4];
-    if (uint32_t(state[3]) == kProbeOff) continue;
+    if (state[3] == float(kProbeOff)) continue;
     const ProbeVec3 probe_position = {f.origin.x + f.spacing.x * float(coord[0]) + state[0],
                                       f.origin.y + f.spacing.y * float(coord[1]) + state[1],
                                       f.origin.z + f.spacing.z * float(coord[2]) + state[2]};
