@@ -1,0 +1,107 @@
+// probes.bin (client/probe_file.h) and the evaluator on a field made by hand: a file survives
+// the round trip bit for bit; a damaged or lying file is refused naming what is wrong; and the
+// evaluator returns what a field of uniform light must give: a grid whose every texel encodes
+// radiance L gives L everywhere (gamma decoded, any point, any normal), and switching every
+// probe off gives black.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "probe_file.h"
+
+namespace ddgi::client {
+namespace {
+
+// A 2x3x2 grid with 4x4 irradiance and 6x6 distance texels, every texel the same: encoded
+// irradiance value^(1/gamma), distances far beyond the grid (nothing occludes).
+ProbeFile uniform_field(float radiance, float gamma) {
+  ProbeFile file;
+  ProbeField& f = file.field;
+  f.counts[0] = 2;
+  f.counts[1] = 3;
+  f.counts[2] = 2;
+  f.origin = {-1.0f, 0.0f, -1.0f};
+  f.spacing = {2.0f, 1.0f, 2.0f};
+  f.irradiance_texels = 4;
+  f.distance_texels = 6;
+  f.border_texels = 1;
+  f.tiles_per_row = 4;
+  f.irradiance_gamma = gamma;
+  const uint32_t rows = 3;  // 12 probes, 4 per row
+  f.irradiance_width = 4 * 6;
+  f.irradiance_height = rows * 6;
+  f.distance_width = 4 * 8;
+  f.distance_height = rows * 8;
+  f.irradiance.assign(size_t(f.irradiance_width) * f.irradiance_height * 4,
+                      std::pow(radiance, 1.0f / gamma));
+  f.distance.resize(size_t(f.distance_width) * f.distance_height * 2);
+  for (size_t i = 0; i < f.distance.size(); i += 2) {
+    f.distance[i] = 100.0f;
+    f.distance[i + 1] = 100.0f * 100.0f;
+  }
+  f.probe_states.assign(12 * 4, 0.0f);
+  file.field_updates = 42;
+  file.session_id = "s0123456789abcdef";
+  return file;
+}
+
+TEST(ProbeFile, RoundTripsBitForBit) {
+  const ProbeFile file = uniform_field(0.25f, 5.0f);
+  ASSERT_STREQ(probe_field_problem(file.field), "");
+  const std::string bytes = encode_probe_file(file);
+  EXPECT_EQ((bytes.size() - 12) % 4, 0u);
+  Result<ProbeFile> back = decode_probe_file(bytes);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->field.irradiance, file.field.irradiance);
+  EXPECT_EQ(back->field.distance, file.field.distance);
+  EXPECT_EQ(back->field.probe_states, file.field.probe_states);
+  EXPECT_EQ(back->field.tiles_per_row, 4u);
+  EXPECT_EQ(back->field.counts[1], 3);
+  EXPECT_EQ(back->field_updates, 42u);
+  EXPECT_EQ(back->session_id, file.session_id);
+  EXPECT_EQ(encode_probe_file(*back), bytes);
+}
+
+TEST(ProbeFile, DamagedFilesAreRefusedNamingWhy) {
+  const std::string good = encode_probe_file(uniform_field(0.25f, 5.0f));
+  auto refused = [](const std::string& bytes) {
+    Result<ProbeFile> file = decode_probe_file(bytes);
+    return file.ok() ? std::string("accepted") : file.error().message;
+  };
+  EXPECT_NE(refused("PNG....").find("not a probe file"), std::string::npos);
+  EXPECT_NE(refused(good.substr(0, good.size() - 4)).find("runs past the end"), std::string::npos);
+  EXPECT_NE(refused(good + "xxxx").find("bytes after"), std::string::npos);
+  std::string lying = good;
+  lying.replace(lying.find("\"counts\":[2,3,2]"), 16, "\"counts\":[2,9,2]");
+  EXPECT_NE(refused(lying), "accepted");
+  std::string huge = good;
+  huge.replace(huge.find("\"irradiance_size\":[24,18]"), 25, "\"irradiance_size\":[99999,1]");
+  EXPECT_NE(refused(huge).find("over 65536"), std::string::npos) << refused(huge);
+  std::string broken = good;
+  broken[13] = '!';
+  EXPECT_NE(refused(broken).find("header"), std::string::npos);
+}
+
+TEST(ProbeField, UniformLightGivesItsRadianceEverywhere) {
+  const float radiance = 0.37f;
+  const ProbeFile file = uniform_field(radiance, 5.0f);
+  const ProbeVec3 points[] = {{0.0f, 1.0f, 0.0f}, {-0.9f, 0.1f, 0.7f}, {3.0f, -2.0f, 5.0f}};
+  const ProbeVec3 normals[] = {{0.0f, 1.0f, 0.0f}, {0.6f, 0.0f, -0.8f}, {0.0f, 0.0f, -1.0f}};
+  for (const ProbeVec3& p : points) {
+    for (const ProbeVec3& n : normals) {
+      const ProbeVec3 e = probe_field_irradiance(file.field, p, n, n);
+      EXPECT_NEAR(e.x, radiance, 1e-5f);
+      EXPECT_NEAR(e.z, radiance, 1e-5f);
+    }
+  }
+  // The control: every probe off gives black, one probe on gives the light back.
+  ProbeFile off = file;
+  for (size_t i = 3; i < off.field.probe_states.size(); i += 4) off.field.probe_states[i] = 3.0f;
+  EXPECT_EQ(probe_field_irradiance(off.field, points[0], normals[0], normals[0]).y, 0.0f);
+  off.field.probe_states[2 * 4 + 3] = 0.0f;  // probe (0, 1, 0), in the point's cage
+  EXPECT_NEAR(probe_field_irradiance(off.field, points[0], normals[0], normals[0]).y, radiance,
+              1e-5f);
+}
+
+}  // namespace
+}  // namespace ddgi::client
