@@ -106,6 +106,11 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   if (options.web.port >= 0) {
     DDGI_ASSIGN_OR_RETURN(server->web_,
                           WebGateway::start(options.web, server->in_process_channel(), *metrics));
+    if (!options.tls_cert_file.empty()) {
+      LOG_WARNING << "the web front serves plain HTTP while gRPC uses TLS: browsers' tokens and "
+                     "frames cross in clear text; put a TLS proxy in front of --web-port or "
+                     "bind it to 127.0.0.1 (docs/web.md)";
+    }
   }
   LOG_INFO << "ddgi-server listening port=" << server->port_
            << " tls=" << (options.tls_cert_file.empty() ? "off" : "on")
