@@ -48,8 +48,9 @@ readbacks not included).
   --warmup N            field updates before measuring                 [64]
   --frames N            timed frames per configuration                 [10]
   --configs LIST        NAME:ASSIGNMENTS entries separated by ';', ASSIGNMENTS being
-                        comma-separated field parameters, e.g.
-                        "default:;no management:classification=false,relocation_iterations=0"
+                        comma-separated field parameters (vectors keep their commas), e.g.
+                        "default:;no management:classification=false,relocation_iterations=0;
+                        dense:counts=12,12,12"
                                                                         [default:]
   --field NAME=VALUE    applied to every configuration first (repeatable)
   --out-dir DIR         also write every reference and frame as EXR there
@@ -78,10 +79,19 @@ Result<std::vector<Config>> parse_configs(const std::string& text) {
       return invalid_argument("--configs entry '" + entry + "' is not NAME:ASSIGNMENTS");
     }
     Config c{entry.substr(0, colon), {}};
+    // Assignments are comma-separated, and so are vector values (counts=8,8,8): a piece with
+    // no '=' continues the value before it.
     std::stringstream items(entry.substr(colon + 1));
     std::string item;
     while (std::getline(items, item, ',')) {
-      if (!item.empty()) c.assignments.push_back(item);
+      if (item.find('=') != std::string::npos) {
+        c.assignments.push_back(item);
+      } else if (!c.assignments.empty()) {
+        c.assignments.back() += "," + item;
+      } else if (!item.empty()) {
+        return invalid_argument("--configs entry '" + entry + "': '" + item +
+                                "' is not NAME=VALUE");
+      }
     }
     configs.push_back(c);
   }

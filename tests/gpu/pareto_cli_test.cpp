@@ -72,13 +72,16 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
       "scenes/cornell_box.gltf --width 40 --height 30 --spp 16 --warmup 4 --frames 1 "
       "--pt-max-spp 4 --pareto '" +
       (dir_ / "out").string() +
-      "' --configs 'default:;16 rays:rays_per_probe=16;small maps:irradiance_texels=4,"
-      "distance_texels=8,rays_per_probe=32'");
+      "' --configs 'default:;16 rays:rays_per_probe=16;small maps:counts=4,4,4,"
+      "irradiance_texels=4,distance_texels=8,rays_per_probe=32'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("| scene | front point |"), std::string::npos) << run.out;
   const nlohmann::json doc = nlohmann::json::parse(slurp(dir_ / "out" / "cornell_box.json"));
   ASSERT_EQ(doc["configs"].size(), 3u);
   EXPECT_EQ(doc["configs"][1]["assignments"][0], "rays_per_probe=16");
+  // A vector value keeps its commas (counts=4,4,4 is one assignment, not three pieces).
+  ASSERT_EQ(doc["configs"][2]["assignments"].size(), 4u);
+  EXPECT_EQ(doc["configs"][2]["assignments"][0], "counts=4,4,4");
   const double mean_ratio = doc["configs"][0]["full"]["mean_ratio"];
   EXPECT_GT(mean_ratio, 0.5);
   EXPECT_LT(mean_ratio, 2.0);
@@ -130,6 +133,9 @@ TEST_F(ParetoCliTest, BadFlagsAreRefusedByName) {
       "--pt-max-spp 1 --pareto /nonexistent/ddgi-pareto");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("/nonexistent/ddgi-pareto"), std::string::npos) << run.err;
+  run = eval("scenes/cornell_box.gltf --configs 'dense:4,4,4'");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("'4' is not NAME=VALUE"), std::string::npos) << run.err;
 }
 
 }  // namespace
