@@ -53,9 +53,6 @@ void add_frame_commands(std::vector<CommandSpec>& commands);
 void add_field_commands(std::vector<CommandSpec>& commands);
 void add_probe_commands(std::vector<CommandSpec>& commands);
 
-// A whole DumpAtlas stream: its metadata and bytes, chunks checked for order and size.
-grpc::Status fetch_atlas(const Cli& cli, const v1::DumpAtlasRequest& request,
-                         v1::AtlasMetadata* metadata, std::string* bytes);
 // "px,py,pz,nx,ny,nz" per point, points separated by ';' or new lines: --points, and the
 // file --points-file names.
 Result<std::vector<v1::QueryPoint>> points_flags(const Flags& flags);

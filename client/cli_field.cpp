@@ -5,6 +5,7 @@
 
 #include "atlas_convert.h"
 #include "cli.h"
+#include "rpc/probe_download.h"
 
 namespace ddgi::client {
 namespace {
@@ -83,7 +84,9 @@ int atlas(Cli& cli) {
 
   v1::AtlasMetadata metadata;
   std::string bytes;
-  if (const grpc::Status status = fetch_atlas(cli, request, &metadata, &bytes); !status.ok()) {
+  if (const grpc::Status status = fetch_atlas(
+          *cli.stub, [&cli] { return cli.context(); }, request, &metadata, &bytes);
+      !status.ok()) {
     return report(status);
   }
   {
@@ -168,39 +171,6 @@ Result<std::vector<v1::QueryPoint>> points_flags(const Flags& flags) {
     return invalid_argument("give --points 'px,py,pz,nx,ny,nz;...' or --points-file");
   }
   return points;
-}
-
-grpc::Status fetch_atlas(const Cli& cli, const v1::DumpAtlasRequest& request,
-                         v1::AtlasMetadata* metadata, std::string* bytes) {
-  auto context = cli.context();
-  auto reader = cli.stub->DumpAtlas(context.get(), request);
-  v1::AtlasChunk chunk;
-  bool have_metadata = false;
-  bytes->clear();
-  while (reader->Read(&chunk)) {
-    if (chunk.has_metadata()) {
-      *metadata = chunk.metadata();
-      have_metadata = true;
-      bytes->reserve(size_t(std::min<uint64_t>(metadata->total_bytes(), 1ull << 32)));
-      continue;
-    }
-    if (!have_metadata || chunk.offset() != bytes->size() ||
-        bytes->size() + chunk.data().size() > metadata->total_bytes()) {
-      context->TryCancel();
-      (void)reader->Finish();
-      return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                          "atlas chunks out of order or beyond the announced size");
-    }
-    *bytes += chunk.data();
-  }
-  const grpc::Status status = reader->Finish();
-  if (!status.ok()) return status;
-  if (!have_metadata || bytes->size() != metadata->total_bytes()) {
-    return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                        "atlas ended after " + std::to_string(bytes->size()) + " of " +
-                            std::to_string(metadata->total_bytes()) + " bytes");
-  }
-  return grpc::Status::OK;
 }
 
 void add_field_commands(std::vector<CommandSpec>& commands) {

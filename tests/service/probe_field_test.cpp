@@ -1,14 +1,14 @@
 // The client-side probe evaluator (proto/rpc/probe_field.h) against the server's own query:
-// the field is downloaded as a client gets it (DumpAtlas: irradiance, distance, probe states;
-// GetFieldParams: bias and crush threshold), and irradiance at random points and normals is
-// computed both ways. Two scenes: the Cornell box (an open room) and two rooms joined by a
-// door (probes near walls, relocated and switched off). The result must not be trivial: the
-// irradiance is far from zero, and a control evaluation with a wrong parameter disagrees.
+// the field is downloaded as a client gets it (rpc/probe_download.h: DumpAtlas of irradiance,
+// distance and probe states; GetFieldParams for bias and crush threshold), and irradiance at random
+// points and normals is computed both ways. Two scenes: the Cornell box (an open room) and two
+// rooms joined by a door (probes near walls, relocated and switched off). The result must not be
+// trivial: the irradiance is far from zero, and a control evaluation with a wrong parameter
+// disagrees.
 #include <algorithm>
 #include <random>
 
-#include "rpc/probe_field.h"
-#include "tests/service/atlas_download.h"
+#include "rpc/probe_download.h"
 #include "tests/service/service_fixture.h"
 
 namespace ddgi::test {
@@ -18,45 +18,12 @@ class ProbeFieldTest : public ServiceTest {
  protected:
   // The session's field as a client downloads it; fails the test when it cannot.
   ProbeField download(const std::string& session, uint64_t* updates) {
-    ProbeField field;
-    auto get = [&](v1::AtlasKind kind) {
-      AtlasDownload atlas = download_atlas(*stub_, session, kind, v1::ATLAS_FORMAT_RAW_F32);
-      EXPECT_TRUE(atlas.status.ok()) << atlas.status.error_message();
-      *updates = atlas.metadata.field_updates();
-      return atlas;
-    };
-    const AtlasDownload irradiance = get(v1::ATLAS_KIND_IRRADIANCE);
-    const v1::AtlasMetadata& m = irradiance.metadata;
-    field.counts[0] = m.probe_counts_x();
-    field.counts[1] = m.probe_counts_y();
-    field.counts[2] = m.probe_counts_z();
-    field.origin = {m.grid_origin().x(), m.grid_origin().y(), m.grid_origin().z()};
-    field.spacing = {m.probe_spacing().x(), m.probe_spacing().y(), m.probe_spacing().z()};
-    field.irradiance_texels = m.texels_per_probe();
-    field.border_texels = m.border_texels();
-    field.tiles_per_row = m.tiles_per_row();
-    field.irradiance_gamma = m.encoding_gamma();
-    field.irradiance_width = m.width();
-    field.irradiance_height = m.height();
-    field.irradiance = raw_floats(irradiance.bytes);
-    const AtlasDownload distance = get(v1::ATLAS_KIND_DISTANCE);
-    field.distance_texels = distance.metadata.texels_per_probe();
-    field.distance_width = distance.metadata.width();
-    field.distance_height = distance.metadata.height();
-    field.distance = raw_floats(distance.bytes);
-    field.probe_states = raw_floats(get(v1::ATLAS_KIND_PROBE_STATES).bytes);
-
-    v1::GetFieldParamsRequest request;
-    request.set_session_id(session);
-    v1::FieldParams params;
-    auto ctx = context();
-    EXPECT_TRUE(stub_->GetFieldParams(ctx.get(), request, &params).ok());
-    for (const v1::FieldParam& p : params.params()) {
-      if (p.name() == "self_shadow_bias") field.self_shadow_bias = std::stof(p.value());
-      if (p.name() == "weight_crush_threshold") field.weight_crush_threshold = std::stof(p.value());
-    }
-    EXPECT_STREQ(probe_field_problem(field), "");
-    return field;
+    Result<DownloadedField> downloaded = download_probe_field(
+        *stub_, [this] { return context(); }, session);
+    EXPECT_TRUE(downloaded.ok()) << downloaded.error().message;
+    if (!downloaded.ok()) return {};
+    *updates = downloaded->field_updates;
+    return std::move(downloaded->field);
   }
 
   // Random points inside the probe grid's box, random unit normals, viewers along the normal or

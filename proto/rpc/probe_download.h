@@ -1,0 +1,39 @@
+// Downloading a session's irradiance field as a client does: a whole DumpAtlas stream with its
+// chunks checked, and the three atlases plus the two query parameters put together as a
+// ProbeField (probe_field.h), taken again until all three atlases come from one field update.
+// ddgi-client (atlas, probes) and the service tests use it.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "ddgi/v1/render_service.grpc.pb.h"
+#include "rpc/probe_field.h"
+
+namespace ddgi {
+
+// Makes the context of each call (token, deadline).
+using ContextFactory = std::function<std::unique_ptr<grpc::ClientContext>()>;
+
+// A whole DumpAtlas stream: its metadata and bytes; DATA_LOSS when chunks come out of order,
+// beyond the announced size, or short of it.
+grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& context,
+                         const v1::DumpAtlasRequest& request, v1::AtlasMetadata* metadata,
+                         std::string* bytes);
+
+struct DownloadedField {
+  ProbeField field;
+  uint64_t field_updates = 0;  // the update all three atlases come from
+};
+
+// The session's irradiance field; UNAVAILABLE when it changed during each of a few attempts
+// (a session streaming frames updates it meanwhile).
+Result<DownloadedField> download_probe_field(v1::RenderService::Stub& stub,
+                                             const ContextFactory& context,
+                                             const std::string& session_id);
+
+}  // namespace ddgi
