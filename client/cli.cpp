@@ -148,11 +148,9 @@ Result<v1::ViewSettings> view_settings_flags(const Flags& flags) {
   if (flags.has("view-mode")) {
     DDGI_ASSIGN_OR_RETURN(const std::string text, flags.get_string("view-mode", ""));
     static const std::pair<const char*, v1::ViewMode> kModes[] = {
-        {"full", v1::VIEW_MODE_FULL},
-        {"direct", v1::VIEW_MODE_DIRECT},
-        {"indirect", v1::VIEW_MODE_INDIRECT},
-        {"albedo", v1::VIEW_MODE_ALBEDO},
-        {"normal", v1::VIEW_MODE_NORMAL}};
+        {"full", v1::VIEW_MODE_FULL},         {"direct", v1::VIEW_MODE_DIRECT},
+        {"indirect", v1::VIEW_MODE_INDIRECT}, {"albedo", v1::VIEW_MODE_ALBEDO},
+        {"normal", v1::VIEW_MODE_NORMAL},     {"probes", v1::VIEW_MODE_PROBES}};
     bool found = false;
     for (const auto& [name, mode] : kModes) {
       if (text == name) {
@@ -162,7 +160,8 @@ Result<v1::ViewSettings> view_settings_flags(const Flags& flags) {
     }
     if (!found) {
       return invalid_argument(
-          "--view-mode must be full, direct, indirect, albedo or normal (got '" + text + "')");
+          "--view-mode must be full, direct, indirect, albedo, normal or probes (got '" + text +
+          "')");
     }
   }
   return settings;

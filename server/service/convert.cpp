@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <string>
 
 #include <glm/gtc/matrix_access.hpp>
@@ -101,6 +102,8 @@ Result<View> view_from_proto(v1::ViewMode v) {
       return View::kAlbedo;
     case v1::VIEW_MODE_NORMAL:
       return View::kNormal;
+    case v1::VIEW_MODE_PROBES:
+      return View::kProbes;
     default:
       return invalid_argument("settings.view_mode " + std::to_string(int(v)) +
                               " is not a ViewMode");
@@ -169,9 +172,11 @@ void to_proto(const ViewConfig& config, v1::ViewSettings* out) {
       out->set_tonemap(v1::TONEMAP_CLAMP);
       break;
   }
-  static const v1::ViewMode kModes[] = {v1::VIEW_MODE_FULL, v1::VIEW_MODE_DIRECT,
+  // Indexed by View; the service never makes the atlas view (View::kAtlas), which has no mode.
+  static const v1::ViewMode kModes[] = {v1::VIEW_MODE_FULL,     v1::VIEW_MODE_DIRECT,
                                         v1::VIEW_MODE_INDIRECT, v1::VIEW_MODE_ALBEDO,
-                                        v1::VIEW_MODE_NORMAL};
+                                        v1::VIEW_MODE_NORMAL,   v1::VIEW_MODE_PROBES};
+  static_assert(std::size(kModes) == size_t(View::kProbes) + 1);
   out->set_view_mode(kModes[static_cast<uint32_t>(config.view)]);
   out->set_jpeg_quality(static_cast<uint32_t>(config.jpeg_quality));
 }

@@ -65,6 +65,16 @@ Status Session::load(const SceneRequest& request) {
   return ok_status();
 }
 
+Status Session::check_view_config(const ViewConfig& config) const {
+  if (config.view == View::kProbes && field() == nullptr) {
+    return failed_precondition(
+        "settings.view_mode VIEW_MODE_PROBES needs the irradiance field; "
+        "session " +
+        state_.id + " was created with gi false");
+  }
+  return ok_status();
+}
+
 Result<SessionScene*> Session::require_scene() {
   if (!state_.scene) return failed_precondition("session " + state_.id + " has no scene loaded");
   return state_.scene.get();
@@ -106,6 +116,7 @@ void Session::create_view(ViewConfig config, std::optional<v1::Camera> camera, v
       true,
       [this, config, camera, reply]() -> Status {
         DDGI_TRY(require_scene());
+        DDGI_TRY(check_view_config(config));
         DDGI_ASSIGN_OR_RETURN(const Camera view_camera, camera_or_default(camera));
         DDGI_ASSIGN_OR_RETURN(SessionView * view,
                               state_.views.add(config, view_camera, loop_.applying_seq()));
@@ -121,7 +132,10 @@ void Session::update_view(std::string view_id, v1::ViewSettings settings, v1::Vi
       true,
       [this, view_id, settings, reply]() -> Status {
         DDGI_ASSIGN_OR_RETURN(SessionView * view, state_.views.find(view_id));
-        DDGI_TRY(apply_view_settings(settings, *env_.limits, view->config));
+        ViewConfig next = view->config;
+        DDGI_TRY(apply_view_settings(settings, *env_.limits, next));
+        DDGI_TRY(check_view_config(next));
+        view->config = next;
         view->seq = loop_.applying_seq();
         to_proto(*view, reply);
         return ok_status();
@@ -292,6 +306,7 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
 Status Session::queue_one_off(const ViewConfig& config, const std::optional<v1::Camera>& camera,
                               FrameWaiter& waiter) {
   DDGI_TRY(require_scene());
+  DDGI_TRY(check_view_config(config));
   DDGI_ASSIGN_OR_RETURN(const Camera one_off_camera, camera_or_default(camera));
   state_.one_offs.add(config, one_off_camera, std::move(waiter));
   return ok_status();
@@ -335,6 +350,7 @@ void Session::attach_stream(std::string view_id, ViewConfig config,
         Result<SessionView*> view = [&]() -> Result<SessionView*> {
           if (!view_id.empty()) return state_.views.find(view_id);
           DDGI_TRY(require_scene());
+          DDGI_TRY(check_view_config(config));
           DDGI_ASSIGN_OR_RETURN(const Camera view_camera, camera_or_default(camera));
           DDGI_ASSIGN_OR_RETURN(SessionView * made,
                                 state_.views.add(config, view_camera, loop_.applying_seq()));

@@ -145,6 +145,9 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   Result<SessionScene*> require_scene();
   // FAILED_PRECONDITION when the session lacks the field of `kind`.
   Status require_field(v1::FieldKind kind) const;
+  // FAILED_PRECONDITION when a view's settings need what the session lacks (the probes view
+  // needs the irradiance field).
+  Status check_view_config(const ViewConfig& config) const;
   Result<Camera> camera_or_default(const std::optional<v1::Camera>& camera) const;
   Result<const LightSlot*> find_light(uint32_t light_id) const;
   // A RenderFrame's waiter joins the next frame: of a one-off view, or of the view `view_id`.
