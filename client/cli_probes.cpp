@@ -1,13 +1,13 @@
 // ddgi-client commands that shade from downloaded probes: `probes` saves a session's
-// irradiance field as one file (probe_file.h), `irradiance` evaluates it at points with the
+// irradiance field as one file (rpc/probe_file.h), `irradiance` evaluates it at points with the
 // server's own formula (rpc/probe_field.h), with no server involved.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "cli.h"
-#include "probe_file.h"
 #include "rpc/probe_download.h"
+#include "rpc/probe_file.h"
 
 namespace ddgi::client {
 namespace {

@@ -28,7 +28,7 @@ tsan_filter="E2eTest.*:PipelinedFramesTest.*:PacedPipelineTest.*:MultiViewTest.*
 AbandonedSessionTest.*:GpuFaultTest.*:MetricsHttpTest.*:ShutdownTest.*:AtlasChunkingTest.*:\
 WebGatewayTest.*"
 unit_tests=(ddgi_core_unit_tests ddgi_gi_unit_tests ddgi_image_tests ddgi_scene_tests
-            ddgi_vk_unit_tests)
+            ddgi_vk_unit_tests ddgi_rpc_unit_tests)
 
 # Runs a gtest executable in `shards` processes at once; prints the log of any that failed.
 run_sharded() {

@@ -1,4 +1,4 @@
-// probes.bin (client/probe_file.h) and the evaluator on a field made by hand: a file survives
+// probes.bin (rpc/probe_file.h) and the evaluator on a field made by hand: a file survives
 // the round trip bit for bit; a damaged or lying file is refused naming what is wrong; and the
 // evaluator returns what a field of uniform light must give: a grid whose every texel encodes
 // radiance L gives L everywhere (gamma decoded, any point, any normal), and switching every
@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "probe_file.h"
+#include "rpc/probe_file.h"
 
-namespace ddgi::client {
+namespace ddgi {
 namespace {
 
 // A 2x3x2 grid with 4x4 irradiance and 6x6 distance texels, every texel the same: encoded
@@ -104,4 +104,4 @@ TEST(ProbeField, UniformLightGivesItsRadianceEverywhere) {
 }
 
 }  // namespace
-}  // namespace ddgi::client
+}  // namespace ddgi

@@ -9,7 +9,7 @@
 #include "core/result.h"
 #include "rpc/probe_field.h"
 
-namespace ddgi::client {
+namespace ddgi {
 
 inline constexpr char kProbeFileMagic[9] = "DDGIPRB1";
 
@@ -23,4 +23,4 @@ std::string encode_probe_file(const ProbeFile& file);
 // INVALID_ARGUMENT naming what is wrong (magic, header, sizes) for anything else.
 Result<ProbeFile> decode_probe_file(const std::string& bytes);
 
-}  // namespace ddgi::client
+}  // namespace ddgi

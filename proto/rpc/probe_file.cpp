@@ -1,10 +1,10 @@
-#include "probe_file.h"
+#include "rpc/probe_file.h"
 
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-namespace ddgi::client {
+namespace ddgi {
 namespace {
 
 void append_floats(std::string& out, const std::vector<float>& values) {
@@ -120,4 +120,4 @@ Result<ProbeFile> decode_probe_file(const std::string& bytes) {
   return file;
 }
 
-}  // namespace ddgi::client
+}  // namespace ddgi
