@@ -160,11 +160,8 @@ Result<std::vector<v1::QueryPoint>> points_flags(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(std::string text, flags.get_string("points", ""));
   DDGI_ASSIGN_OR_RETURN(const std::string file, flags.get_string("points-file", ""));
   if (!file.empty()) {
-    std::ifstream in(file);
-    if (!in) return not_found("cannot read " + file);
-    std::ostringstream content;
-    content << in.rdbuf();
-    text += "\n" + content.str();
+    DDGI_ASSIGN_OR_RETURN(const std::string content, read_text(file, "points file"));
+    text += "\n" + content;
   }
   DDGI_ASSIGN_OR_RETURN(std::vector<v1::QueryPoint> points, parse_points(text));
   if (points.empty()) {

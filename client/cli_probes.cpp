@@ -3,7 +3,6 @@
 // server's own formula (rpc/probe_field.h), with no server involved.
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 
 #include "cli.h"
 #include "rpc/probe_download.h"
@@ -39,11 +38,8 @@ int probes(Cli& cli) {
 int irradiance(Cli& cli) {
   DDGI_CLI_TRY(const std::string path, cli.flags.get_string("probes", ""));
   if (path.empty()) return report(invalid_argument("--probes FILE is required"));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return report(not_found("cannot read " + path));
-  std::ostringstream content;
-  content << in.rdbuf();
-  DDGI_CLI_TRY(const ProbeFile file, decode_probe_file(content.str()));
+  DDGI_CLI_TRY(const std::string bytes, read_text(path, "probes file"));
+  DDGI_CLI_TRY(const ProbeFile file, decode_probe_file(bytes));
   DDGI_CLI_TRY(const std::vector<v1::QueryPoint> points, points_flags(cli.flags));
   // The reply in QueryIrradiance's own shape, so a script can compare the two.
   v1::QueryIrradianceReply reply;

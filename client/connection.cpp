@@ -6,7 +6,6 @@
 #include <sstream>
 
 namespace ddgi::client {
-namespace {
 
 Result<std::string> read_text(const std::string& path, const char* what) {
   std::ifstream file(path, std::ios::binary);
@@ -15,6 +14,8 @@ Result<std::string> read_text(const std::string& path, const char* what) {
   text << file.rdbuf();
   return text.str();
 }
+
+namespace {
 
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r\n");

@@ -28,6 +28,8 @@ const char* connection_usage();
 // From --server, --tls, --tls-ca, --tls-server-name, --token-file, --deadline, and the
 // environment (DDGI_SERVER, DDGI_TOKEN).
 Result<ConnectionOptions> connection_options(const Flags& flags);
+// A whole file's bytes; NOT_FOUND naming `what` and the path when it cannot be read.
+Result<std::string> read_text(const std::string& path, const char* what);
 
 std::shared_ptr<grpc::Channel> make_channel(const ConnectionOptions& options);
 // Adds the token and, when `deadline` is set, the deadline.

@@ -4,13 +4,13 @@
 #include <cstring>
 
 namespace ddgi {
-namespace {
-
-std::vector<float> floats(const std::string& bytes) {
-  std::vector<float> values(bytes.size() / 4);
-  std::memcpy(values.data(), bytes.data(), values.size() * 4);  // little-endian, as sent
+std::vector<float> raw_floats(const std::string& bytes) {
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));  // little-endian
   return values;
 }
+
+namespace {
 
 // The field from its three RAW_F32 atlases (irradiance, distance, probe states).
 ProbeField field_from_atlases(const v1::AtlasMetadata meta[3], const std::string bytes[3]) {
@@ -27,12 +27,12 @@ ProbeField field_from_atlases(const v1::AtlasMetadata meta[3], const std::string
   f.irradiance_gamma = m.encoding_gamma();
   f.irradiance_width = m.width();
   f.irradiance_height = m.height();
-  f.irradiance = floats(bytes[0]);
+  f.irradiance = raw_floats(bytes[0]);
   f.distance_texels = meta[1].texels_per_probe();
   f.distance_width = meta[1].width();
   f.distance_height = meta[1].height();
-  f.distance = floats(bytes[1]);
-  f.probe_states = floats(bytes[2]);
+  f.distance = raw_floats(bytes[1]);
+  f.probe_states = raw_floats(bytes[2]);
   return f;
 }
 

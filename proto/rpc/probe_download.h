@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/result.h"
 #include "ddgi/v1/render_service.grpc.pb.h"
@@ -24,6 +25,9 @@ using ContextFactory = std::function<std::unique_ptr<grpc::ClientContext>()>;
 grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& context,
                          const v1::DumpAtlasRequest& request, v1::AtlasMetadata* metadata,
                          std::string* bytes);
+
+// The float32 texels of a RAW_F32 atlas (little-endian, as the service sends them).
+std::vector<float> raw_floats(const std::string& bytes);
 
 struct DownloadedField {
   ProbeField field;

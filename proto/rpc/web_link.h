@@ -1,7 +1,7 @@
 // A C++ client of ddgi-server's web front (web.proto) on civetweb's WebSocket client: what a
 // browser does, for scripted clients (ddgi-client stream --web, the WebSocket benchmark) and
 // the service tests. Calls are WebRequests sent as JSON and matched to their WebReply by id;
-// frames are kept in arrival order (up to kQueuedFrames; older ones are dropped and counted,
+// frames are kept in arrival order (up to kQueuedFrames; older ones are dropped,
 // as a browser would skip them) and the newest one is always at hand.
 #pragma once
 
@@ -44,7 +44,6 @@ class WebLink {
   // The oldest frame not yet taken; false when none came within `seconds` or the link closed.
   bool next_frame(v1::Frame* frame, double seconds = 60.0);
   uint64_t frames() const;       // frames received
-  uint64_t frames_lost() const;  // dropped from the queue unread, or unreadable
   v1::Frame last_frame() const;  // the newest one (jpeg included)
   bool wait_frames(uint64_t count, double seconds = 60.0) const;
   // Waits for a frame whose last_command_seq >= seq.
@@ -64,7 +63,6 @@ class WebLink {
   std::multimap<uint64_t, v1::WebReply> replies_;
   std::deque<v1::Frame> queue_;
   uint64_t frames_ = 0;
-  uint64_t lost_ = 0;
   v1::Frame last_frame_;
   bool closed_ = false;
 };

@@ -35,8 +35,7 @@ Status validate(const WebOptions& options) {
 
 WebGateway::WebGateway(std::shared_ptr<grpc::Channel> channel, Metrics& metrics,
                        int max_connections)
-    : channel_(std::move(channel)),
-      stub_(v1::RenderService::NewStub(channel_)),
+    : stub_(v1::RenderService::NewStub(channel)),
       metrics_(metrics),
       max_connections_(max_connections) {}
 

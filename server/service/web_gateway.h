@@ -58,7 +58,6 @@ class WebGateway {
   static int on_data(mg_connection* connection, int bits, char* data, size_t size, void* self);
   static void on_close(const mg_connection* connection, void* self);
 
-  std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::RenderService::Stub> stub_;
   Metrics& metrics_;
   const int max_connections_;

@@ -1,7 +1,6 @@
 #include "tests/service/atlas_download.h"
 
 #include <chrono>
-#include <cstring>
 
 namespace ddgi::test {
 
@@ -31,12 +30,6 @@ AtlasDownload download_atlas(v1::RenderService::Stub& stub, const std::string& s
   }
   out.status = reader->Finish();
   return out;
-}
-
-std::vector<float> raw_floats(const std::string& bytes) {
-  std::vector<float> values(bytes.size() / sizeof(float));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
-  return values;
 }
 
 }  // namespace ddgi::test

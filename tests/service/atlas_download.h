@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ddgi/v1/render_service.grpc.pb.h"
+#include "rpc/probe_download.h"  // raw_floats
 
 namespace ddgi::test {
 
@@ -23,8 +24,5 @@ struct AtlasDownload {
 AtlasDownload download_atlas(v1::RenderService::Stub& stub, const std::string& session_id,
                              v1::AtlasKind kind, v1::AtlasFormat format,
                              const std::string& token = "");
-
-// The raw float32 texels of a RAW_F32 download (little-endian, as the service sends them).
-std::vector<float> raw_floats(const std::string& bytes);
 
 }  // namespace ddgi::test
