@@ -62,7 +62,7 @@ Status convert_atlas(const AtlasTexels& texels, v1::AtlasKind kind, const std::s
   // and AO are in [0, 1] already).
   const bool scale_to_max = kind == v1::ATLAS_KIND_DISTANCE ||
                             kind == v1::ATLAS_KIND_SHADOW_MOMENTS ||
-                            kind == v1::ATLAS_KIND_PROBE_STATES;
+                            kind == v1::ATLAS_KIND_PROBE_STATES || kind == v1::ATLAS_KIND_SH;
   if (!keep_floats && scale_to_max) {
     for (uint32_t c = 0; c < texels.channels; ++c) {
       float largest = 0.0f;

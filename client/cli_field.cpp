@@ -60,9 +60,10 @@ Result<v1::AtlasKind> kind_flag(const Flags& flags) {
   if (kind == "shadow") return v1::ATLAS_KIND_SHADOW;
   if (kind == "shadow-moments") return v1::ATLAS_KIND_SHADOW_MOMENTS;
   if (kind == "probe-states") return v1::ATLAS_KIND_PROBE_STATES;
+  if (kind == "sh") return v1::ATLAS_KIND_SH;
   return invalid_argument(
-      "--kind must be irradiance, distance, shadow, shadow-moments or probe-states (got '" + kind +
-      "')");
+      "--kind must be irradiance, distance, shadow, shadow-moments, probe-states or sh (got '" +
+      kind + "')");
 }
 
 int atlas(Cli& cli) {
@@ -179,7 +180,7 @@ void add_field_commands(std::vector<CommandSpec>& commands) {
                       params});
   commands.push_back(
       {"atlas",
-       "--session ID [--kind irradiance|distance|shadow|shadow-moments|probe-states] "
+       "--session ID [--kind irradiance|distance|shadow|shadow-moments|probe-states|sh] "
        "[--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
        "dump a probe atlas (metadata to stdout and FILE.json), optionally "
        "converted through OpenImageIO",

@@ -1,6 +1,7 @@
 // Downloading a session's irradiance field as a client does: a whole DumpAtlas stream with its
-// chunks checked, and the three atlases plus the two query parameters put together as a
-// ProbeField (probe_field.h), taken again until all three atlases come from one field update.
+// chunks checked, and the field's dumps (irradiance and distance atlases, or SH coefficients;
+// probe states) plus the two query parameters put together as a ProbeField (probe_field.h),
+// taken again until every dump comes from one field update.
 // ddgi-client (atlas, probes) and the service tests use it.
 #pragma once
 
@@ -31,7 +32,7 @@ std::vector<float> raw_floats(const std::string& bytes);
 
 struct DownloadedField {
   ProbeField field;
-  uint64_t field_updates = 0;  // the update all three atlases come from
+  uint64_t field_updates = 0;  // the update every dump comes from
 };
 
 // The session's irradiance field; UNAVAILABLE when it changed during each of a few attempts

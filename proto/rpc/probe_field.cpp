@@ -75,16 +75,61 @@ void atlas_uv(const ProbeField& f, uint32_t p, ProbeVec3 d, uint32_t texels, uin
   *t = (origin_y + float(f.border_texels) + (ov * 0.5f + 0.5f) * float(texels)) / float(height);
 }
 
-}  // namespace
-
-const char* probe_field_problem(const ProbeField& f) {
-  const size_t probes = size_t(std::max(f.counts[0], 0)) * size_t(std::max(f.counts[1], 0)) *
-                        size_t(std::max(f.counts[2], 0));
-  if (probes == 0) return "counts: every axis needs at least one probe";
-  if (f.tiles_per_row == 0) return "tiles_per_row is 0";
-  if (!(f.spacing.x > 0.0f && f.spacing.y > 0.0f && f.spacing.z > 0.0f)) {
-    return "spacing must be positive on every axis";
+// M (= E / pi) around n from SH probe p's coefficients, as sh.glsl's sh_irradiance.
+ProbeVec3 sh_irradiance(const ProbeField& f, uint32_t p, ProbeVec3 d) {
+  const float y[9] = {0.282094792f,
+                      0.488602512f * d.y,
+                      0.488602512f * d.z,
+                      0.488602512f * d.x,
+                      1.092548431f * d.x * d.y,
+                      1.092548431f * d.y * d.z,
+                      0.315391565f * (3.0f * d.z * d.z - 1.0f),
+                      1.092548431f * d.x * d.z,
+                      0.546274215f * (d.x * d.x - d.y * d.y)};
+  const float* c = &f.sh[size_t(p) * 27];
+  float out[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    float band1 = 0.0f, band2 = 0.0f;
+    for (int k = 1; k < 4; ++k) band1 += c[k * 3 + ch] * y[k];
+    for (int k = 4; k < 9; ++k) band2 += c[k * 3 + ch] * y[k];
+    out[ch] =
+        std::max(c[ch] * y[0] + f.sh_band_scales[1] * band1 + f.sh_band_scales[2] * band2, 0.0f);
   }
+  return {out[0], out[1], out[2]};
+}
+
+// What the cage blends of probe p around n (field.glsl, probe_blend_value).
+ProbeVec3 probe_blend_value(const ProbeField& f, uint32_t probe, ProbeVec3 n) {
+  if (f.basis == kProbeBasisSh) return sh_irradiance(f, probe, n);
+  float s = 0.0f, t = 0.0f, encoded[4];
+  atlas_uv(f, probe, n, f.irradiance_texels, f.irradiance_width, f.irradiance_height, &s, &t);
+  bilinear<4>(f.irradiance, f.irradiance_width, f.irradiance_height, s, t, encoded);
+  // 2021 paper, fig. 3: decode to gamma 2 for the blend, square after.
+  const float exponent = f.irradiance_gamma * 0.5f;
+  return {std::pow(std::max(encoded[0], 0.0f), exponent),
+          std::pow(std::max(encoded[1], 0.0f), exponent),
+          std::pow(std::max(encoded[2], 0.0f), exponent)};
+}
+
+// Chebyshev visibility of `biased` from octahedral probe p (field.glsl, chebyshev_visibility).
+float chebyshev_visibility(const ProbeField& f, uint32_t probe, ProbeVec3 probe_position,
+                           ProbeVec3 biased, ProbeVec3 n) {
+  const ProbeVec3 probe_to_point = biased - probe_position;
+  const float r = std::sqrt(dot(probe_to_point, probe_to_point));
+  float s = 0.0f, t = 0.0f, moments[2];
+  atlas_uv(f, probe, safe_normalize(probe_to_point, n), f.distance_texels, f.distance_width,
+           f.distance_height, &s, &t);
+  bilinear<2>(f.distance, f.distance_width, f.distance_height, s, t, moments);
+  if (r <= moments[0]) return 1.0f;
+  const float variance = std::fabs(moments[1] - moments[0] * moments[0]);
+  const float d = r - moments[0];
+  const float chebyshev = variance / std::max(variance + d * d, 1e-30f);
+  return chebyshev * chebyshev * chebyshev;
+}
+
+// The octahedral field's atlases, or "" when they fit the grid.
+const char* atlas_problem(const ProbeField& f, size_t probes) {
+  if (f.tiles_per_row == 0) return "tiles_per_row is 0";
   const size_t rows = (probes + f.tiles_per_row - 1) / f.tiles_per_row;
   const auto fits = [&](uint32_t texels, uint32_t width, uint32_t height) {
     const size_t tile = texels + 2u * f.border_texels;
@@ -102,8 +147,24 @@ const char* probe_field_problem(const ProbeField& f) {
   if (f.distance.size() != size_t(f.distance_width) * f.distance_height * 2) {
     return "distance: expected width x height x 2 floats";
   }
-  if (f.probe_states.size() != probes * 4) return "probe_states: expected 4 floats per probe";
   return "";
+}
+
+}  // namespace
+
+const char* probe_field_problem(const ProbeField& f) {
+  const size_t probes = size_t(std::max(f.counts[0], 0)) * size_t(std::max(f.counts[1], 0)) *
+                        size_t(std::max(f.counts[2], 0));
+  if (probes == 0) return "counts: every axis needs at least one probe";
+  if (!(f.spacing.x > 0.0f && f.spacing.y > 0.0f && f.spacing.z > 0.0f)) {
+    return "spacing must be positive on every axis";
+  }
+  if (f.probe_states.size() != probes * 4) return "probe_states: expected 4 floats per probe";
+  if (f.basis == kProbeBasisSh) {
+    return f.sh.size() == probes * 27 ? "" : "sh: expected 27 floats per probe";
+  }
+  if (f.basis != kProbeBasisOctahedral) return "basis must be 0 (octahedral) or 1 (sh)";
+  return atlas_problem(f, probes);
 }
 
 ProbeVec3 probe_field_irradiance(const ProbeField& f, ProbeVec3 p, ProbeVec3 n,
@@ -147,18 +208,9 @@ ProbeVec3 probe_field_irradiance(const ProbeField& f, ProbeVec3 p, ProbeVec3 n,
     const float wrap = (dot(to_probe, n) + 1.0f) * 0.5f;
     float weight = wrap * wrap + 0.2f;
 
-    // Chebyshev visibility from the probe's distance moments, seen from the biased point.
-    const ProbeVec3 probe_to_point = biased - probe_position;
-    const float r = std::sqrt(dot(probe_to_point, probe_to_point));
-    float s = 0.0f, t = 0.0f, moments[2];
-    atlas_uv(f, probe, safe_normalize(probe_to_point, n), f.distance_texels, f.distance_width,
-             f.distance_height, &s, &t);
-    bilinear<2>(f.distance, f.distance_width, f.distance_height, s, t, moments);
-    if (r > moments[0]) {
-      const float variance = std::fabs(moments[1] - moments[0] * moments[0]);
-      const float d = r - moments[0];
-      const float chebyshev = variance / std::max(variance + d * d, 1e-30f);
-      weight *= chebyshev * chebyshev * chebyshev;
+    // Octahedral probes know what they see (their distance moments); SH probes do not.
+    if (f.basis == kProbeBasisOctahedral) {
+      weight *= chebyshev_visibility(f, probe, probe_position, biased, n);
     }
     // Crush tiny weights: light leaking through thin walls shows at low weights.
     weight = std::max(weight, 1e-6f);
@@ -166,22 +218,16 @@ ProbeVec3 probe_field_irradiance(const ProbeField& f, ProbeVec3 p, ProbeVec3 n,
     if (weight < c) weight *= weight * weight / (c * c);
     weight *= std::max(trilinear, 0.0f);
 
-    float encoded[4];
-    atlas_uv(f, probe, n, f.irradiance_texels, f.irradiance_width, f.irradiance_height, &s, &t);
-    bilinear<4>(f.irradiance, f.irradiance_width, f.irradiance_height, s, t, encoded);
-    // 2021 paper, fig. 3: decode to gamma 2 for the blend, square after.
-    const float exponent = f.irradiance_gamma * 0.5f;
-    sum = sum + ProbeVec3{std::pow(std::max(encoded[0], 0.0f), exponent),
-                          std::pow(std::max(encoded[1], 0.0f), exponent),
-                          std::pow(std::max(encoded[2], 0.0f), exponent)} *
-                    weight;
+    sum = sum + probe_blend_value(f, probe, n) * weight;
     weight_sum += weight;
   }
   if (!(weight_sum > 0.0f)) return {};
-  const ProbeVec3 blended = {sum.x / weight_sum, sum.y / weight_sum, sum.z / weight_sum};
+  ProbeVec3 blended = {sum.x / weight_sum, sum.y / weight_sum, sum.z / weight_sum};
+  if (f.basis == kProbeBasisOctahedral) {
+    blended = {blended.x * blended.x, blended.y * blended.y, blended.z * blended.z};
+  }
   const auto sanitize = [](float v) { return std::isfinite(v) ? std::max(v, 0.0f) : 0.0f; };
-  return {sanitize(blended.x * blended.x), sanitize(blended.y * blended.y),
-          sanitize(blended.z * blended.z)};
+  return {sanitize(blended.x), sanitize(blended.y), sanitize(blended.z)};
 }
 
 }  // namespace ddgi

@@ -1,10 +1,12 @@
-// The irradiance field as a client receives it (the probe grid, its irradiance and distance
-// atlases and each probe's relocation offset and state) and its irradiance query, written as
-// the server's shader writes it (shaders/common/field.glsl, sample_irradiance): the same cage
-// of 8 probes, bias, wrap shading, Chebyshev visibility, weight crushing, bilinear atlas reads
-// (clamped to the edge) and gamma decoding. For clients that shade from downloaded probes (CI
-// jobs asking for irradiance without a round trip, a local renderer); web/probes.js is the same
-// function for browsers. Plain C++ with no dependency, so it can be copied into any client.
+// The irradiance field as a client receives it (the probe grid; its irradiance and distance
+// atlases, or for SH fields each probe's nine SH coefficients; each probe's relocation offset
+// and state) and its irradiance query, written as the server's shader writes it
+// (shaders/common/field.glsl, sample_irradiance): the same cage of 8 probes, bias, wrap
+// shading, Chebyshev visibility (octahedral probes), weight crushing, bilinear atlas reads
+// (clamped to the edge) and gamma decoding, or the SH irradiance (shaders/common/sh.glsl). For
+// clients that shade from downloaded probes (CI jobs asking for irradiance without a round trip, a
+// local renderer); web/probes.js is the same function for browsers. Plain C++ with no dependency,
+// so it can be copied into any client.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +18,12 @@ struct ProbeVec3 {
   float x = 0.0f, y = 0.0f, z = 0.0f;
 };
 
+// ProbeField::basis (shaders/shared/field_data.h, kFieldBasis*).
+inline constexpr uint32_t kProbeBasisOctahedral = 0;
+inline constexpr uint32_t kProbeBasisSh = 1;
+
 struct ProbeField {
+  uint32_t basis = kProbeBasisOctahedral;
   int counts[3] = {0, 0, 0};       // probes per axis
   ProbeVec3 origin;                // probe (0,0,0) before relocation
   ProbeVec3 spacing;               // between neighbours, per axis
@@ -35,6 +42,10 @@ struct ProbeField {
   std::vector<float> distance;
   // Per probe (x fastest, then y, then z): relocation offset x, y, z and state (3: off).
   std::vector<float> probe_states;
+  // SH fields only (the atlases are then empty): 9 RGB coefficients per probe (27 floats, in
+  // probe order) and the factor of bands 0, 1, 2 in M (DumpAtlas ATLAS_KIND_SH).
+  std::vector<float> sh;
+  float sh_band_scales[3] = {1.0f, 2.0f / 3.0f, 0.25f};
 };
 
 // Empty when the field is consistent (sizes of every array agree with the grid); otherwise

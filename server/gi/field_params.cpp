@@ -26,6 +26,11 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
                         "unrotated rays for relocation/classification"),
           param::number("max_ray_distance", &P::max_ray_distance, 1e-30f, 1e30f,
                         "longer rays are misses"),
+          param::choice("basis", &P::basis,
+                        {{"octahedral", ProbeBasis::kOctahedral}, {"sh", ProbeBasis::kSh}},
+                        "what probes store: octahedral maps or L2 SH"),
+          param::number("sh_window", &P::sh_window, 0.0f, 64.0f,
+                        "SH Hanning window width (0: none)"),
           param::number("irradiance_texels", &P::irradiance_texels, 4, 32, "irradiance map side"),
           param::number("distance_texels", &P::distance_texels, 4, 64, "distance map side"),
           param::number("hysteresis", &P::hysteresis, 0.0f, 0.999f, "history weight per update"),
@@ -116,7 +121,8 @@ Status validate(const IrradianceFieldParams& p) {
 
 AtlasLayout atlas_layout(const IrradianceFieldParams& p) {
   AtlasLayout layout;
-  const SquareTiling tiling = square_tiling(probe_count(p));
+  // SH fields keep one tile of each atlas only so that the sampling set stays complete.
+  const SquareTiling tiling = square_tiling(p.basis == ProbeBasis::kSh ? 1 : probe_count(p));
   layout.tiles_per_row = tiling.tiles_per_row;
   layout.rows = tiling.rows;
   const uint32_t irradiance_tile = p.irradiance_texels + 2 * gpu::kAtlasBorder;
@@ -161,9 +167,23 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
   const uint64_t irradiance_tile = uint64_t(p.irradiance_texels + 2) * (p.irradiance_texels + 2);
   const uint64_t distance_tile = uint64_t(p.distance_texels + 2) * (p.distance_texels + 2);
   const uint64_t rays = probes * (p.rays_per_probe + p.fixed_rays);
-  return probes * (irradiance_tile * 16 + distance_tile * 8 + sizeof(gpu::ProbeState) +
-                   sizeof(uint32_t)) +
+  const uint64_t probe_maps = irradiance_tile * 16 + distance_tile * 8;
+  const bool sh = p.basis == ProbeBasis::kSh;
+  // One tile of each map for SH fields, one ShProbe for octahedral ones (atlas_layout()).
+  const uint64_t maps =
+      sh ? probes * sizeof(gpu::ShProbe) + probe_maps : probes * probe_maps + sizeof(gpu::ShProbe);
+  return maps + probes * (sizeof(gpu::ProbeState) + sizeof(uint32_t)) +
          rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
+}
+
+std::array<float, 2> sh_band_scales(const IrradianceFieldParams& p) {
+  auto window = [&](int band) {
+    if (p.sh_window <= 0.0f) return 1.0;
+    if (float(band) >= p.sh_window) return 0.0;
+    return 0.5 * (1.0 + std::cos(3.14159265358979 * band / p.sh_window));
+  };
+  // A_l / pi: 2/3 and 1/4 (Ramamoorthi and Hanrahan 2001).
+  return {float(2.0 / 3.0 * window(1)), float(0.25 * window(2))};
 }
 
 }  // namespace ddgi

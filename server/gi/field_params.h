@@ -6,6 +6,7 @@
 // ("the thesis"), in ../shared/papers/.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,8 +17,19 @@
 #include "gi/param_table.h"
 #include "gpu_scene/frame_types.h"
 #include "scene/scene.h"
+#include "shared/field_data.h"
 
 namespace ddgi {
+
+// What each probe stores of the light it sees (docs/sh-probes.md).
+enum class ProbeBasis : uint32_t {
+  // Octahedral irradiance and distance maps: visibility-aware, 4.2 KB per probe at the default
+  // texel counts (DDGI, the 2019/2021 papers).
+  kOctahedral = gpu::kFieldBasisOctahedral,
+  // L2 spherical harmonics of radiance, nine RGB coefficients (108 B on the GPU, less on the
+  // wire), no visibility (DDISH-GI, Ikkala et al. 2022): cheap to stream to clients.
+  kSh = gpu::kFieldBasisSh,
+};
 
 struct IrradianceFieldParams {
   // --- Grid ---------------------------------------------------------------------------------
@@ -41,7 +53,16 @@ struct IrradianceFieldParams {
   // the field should see the whole scene.
   float max_ray_distance = 1e30f;
 
-  // --- Atlases ------------------------------------------------------------------------------
+  // --- Probe basis --------------------------------------------------------------------------
+  // Octahedral maps (the default: they carry visibility, so light does not leak through walls)
+  // or SH coefficients (docs/sh-probes.md). Changing it starts the field over.
+  ProbeBasis basis = ProbeBasis::kOctahedral;
+  // SH fields: width w of the Hanning window h_l = (1 + cos(pi l / w)) / 2 that damps band l
+  // against ringing, in [0, 64]; 0: no window. 0 by default: the cosine lobe already damps band
+  // 2 to a quarter and negative irradiance is clamped; docs/sh-probes.md measures both.
+  float sh_window = 0.0f;
+
+  // --- Atlases (octahedral basis) ---------------------------------------------------------
   // Interior side of each probe's octahedral irradiance map, in [4, 32]. 8: irradiance is
   // smooth (2021 paper).
   uint32_t irradiance_texels = 8;
@@ -169,6 +190,9 @@ struct AtlasLayout {
   glm::uvec2 distance_size{0};
 };
 AtlasLayout atlas_layout(const IrradianceFieldParams& params);
+// The factors of SH bands 1 and 2 in M = E / pi: A_l / pi times the ringing window
+// (FieldConstants::sh_band1/2, shaders/common/sh.glsl).
+std::array<float, 2> sh_band_scales(const IrradianceFieldParams& params);
 // Bytes of GPU memory the field's atlases and ray buffers need (checked against the budget
 // before anything is allocated).
 uint64_t field_gpu_bytes(const IrradianceFieldParams& params);

@@ -57,7 +57,8 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.classification != b.classification || a.probe_offset_limit != b.probe_offset_limit ||
          a.min_frontface_distance != b.min_frontface_distance ||
          a.backface_threshold != b.backface_threshold || a.fixed_rays != b.fixed_rays ||
-         a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels;
+         a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels ||
+         a.basis != b.basis;
 }
 
 // Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are freed.
@@ -91,7 +92,8 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   desc.sampling = {{gpu::kFieldBindingConstants},
                    {gpu::kFieldBindingProbes},
                    {gpu::kFieldBindingIrradiance, sampled},
-                   {gpu::kFieldBindingDistance, sampled}};
+                   {gpu::kFieldBindingDistance, sampled},
+                   {gpu::kFieldBindingSh}};
   desc.update = {{gpu::kFieldUpdateBindingRays},
                  {gpu::kFieldUpdateBindingIrradianceOut, storage},
                  {gpu::kFieldUpdateBindingDistanceOut, storage},
@@ -107,6 +109,7 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
   backend_ = backend;
   DDGI_ASSIGN_OR_RETURN(trace_, update_kernel("field_trace", true, kLinearWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_, update_kernel("field_blend", false, kProbeWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(blend_sh_, update_kernel("field_blend_sh", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(manage_, update_kernel("field_probes", false, kLinearWorkgroup));
   if (shadow_field_) {
     DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_,
@@ -153,6 +156,7 @@ Status IrradianceField::create_resources() {
   probe_list_.reset();
   irradiance_.reset();
   distance_.reset();
+  sh_.reset();
 
   const uint64_t before = context_.allocated_bytes();
   layout_ = atlas_layout(params_);
@@ -169,6 +173,9 @@ Status IrradianceField::create_resources() {
                                            vk::MemoryUsage::kDeviceLocal, "probe states"));
   DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
                                                   vk::MemoryUsage::kDeviceLocal, "probe rays"));
+  const uint64_t sh_probes = params_.basis == ProbeBasis::kSh ? probes : 1;
+  DDGI_ASSIGN_OR_RETURN(sh_, vk::Buffer::create(context_, sh_probes * sizeof(gpu::ShProbe), storage,
+                                                vk::MemoryUsage::kDeviceLocal, "SH probes"));
   DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, probes * sizeof(uint32_t),
                                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                         vk::MemoryUsage::kUpload, "probe list"));
@@ -191,6 +198,7 @@ Status IrradianceField::create_resources() {
                      VK_IMAGE_LAYOUT_GENERAL)
       .sampled_image(gpu::kFieldBindingDistance, distance_, sets_.sampler().handle(), 0,
                      VK_IMAGE_LAYOUT_GENERAL)
+      .buffer(gpu::kFieldBindingSh, sh_)
       .apply(context_.device());
   vk::DescriptorWriter(sets_.update_set())
       .buffer(gpu::kFieldUpdateBindingRays, rays_)
@@ -241,6 +249,7 @@ Status IrradianceField::reset() {
                            VK_IMAGE_LAYOUT_GENERAL);
       vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
     }
+    vkCmdFillBuffer(cmd, sh_.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier_all(cmd);
   }));
   if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
@@ -305,7 +314,8 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
       vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_, c)};
   auto fixed_rays_then = [&](uint32_t mode) {
     passes.push_back(with_access(linear_pass("field trace", trace_, {0, n, n, params_.fixed_rays}),
-                                 {&probes_, &probe_list_, &irradiance_, &distance_}, {&rays_}));
+                                 {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
+                                 {&rays_}));
     passes.push_back(with_access(linear_pass("probe management", manage_, {0, n, n, 1, mode}),
                                  {&rays_, &probe_list_}, {&probes_}));
   };
@@ -442,6 +452,10 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
                              std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
   c.backface_threshold = params_.backface_threshold;
   c.emitter_samples = params_.emitter_samples;
+  c.basis = static_cast<uint32_t>(params_.basis);
+  const std::array<float, 2> bands = sh_band_scales(params_);
+  c.sh_band1 = bands[0];
+  c.sh_band2 = bands[1];
   return c;
 }
 
@@ -494,7 +508,13 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
   if (update_path_ == FieldUpdatePath::kFused) {
     const vk::Kernel& trace = reads_shadow_field ? trace_with_shadow_field_ : trace_;
     passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
-                                 {&probes_, &probe_list_, &irradiance_, &distance_}, {&rays_}));
+                                 {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
+                                 {&rays_}));
+    if (params_.basis == ProbeBasis::kSh) {
+      passes.push_back(with_access(probe_workgroup_pass("field blend", blend_sh_, rays),
+                                   {&rays_, &probes_, &sh_}, {&sh_, &probes_}));
+      return;
+    }
     passes.push_back(with_access(probe_workgroup_pass("field blend", blend_, rays),
                                  {&rays_, &probes_}, {&irradiance_, &distance_, &probes_}));
     return;
@@ -504,7 +524,12 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
   passes.push_back(with_access(linear_pass("field trace", trace_surfels_, rays),
                                {&probes_, &probe_list_}, {&surfels_}));
   passes.push_back(with_access(linear_pass("field shade", shade, rays, shadow_set),
-                               {&surfels_, &irradiance_, &distance_}, {&rays_}));
+                               {&surfels_, &irradiance_, &distance_, &sh_}, {&rays_}));
+  if (params_.basis == ProbeBasis::kSh) {
+    passes.push_back(with_access(probe_workgroup_pass("field blend", blend_sh_, rays),
+                                 {&rays_, &probes_, &sh_}, {&sh_, &probes_}));
+    return;
+  }
   passes.push_back(
       with_access(linear_pass("blend irradiance", blend_irradiance_, per_probe(ti * ti)),
                   {&rays_, &probes_}, {&irradiance_}));
@@ -566,6 +591,9 @@ Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<Irradian
 
 Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image& image,
                                                                 uint32_t channels) {
+  if (params_.basis != ProbeBasis::kOctahedral) {
+    return failed_precondition("the field's probes are SH coefficients, not octahedral maps");
+  }
   AtlasImage atlas;
   atlas.width = image.width();
   atlas.height = image.height();
@@ -574,6 +602,15 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
   DDGI_TRY(vk::download_image(context_, image, atlas.texels.data(),
                               atlas.texels.size() * sizeof(float)));
   return atlas;
+}
+
+Result<std::vector<gpu::ShProbe>> IrradianceField::read_sh_probes() {
+  if (params_.basis != ProbeBasis::kSh) {
+    return failed_precondition("the field's probes are octahedral maps, not SH coefficients");
+  }
+  std::vector<gpu::ShProbe> probes(probe_count(params_));
+  DDGI_TRY(vk::download_buffer(context_, sh_, probes.data(), probes.size() * sizeof(gpu::ShProbe)));
+  return probes;
 }
 
 Result<IrradianceField::AtlasImage> IrradianceField::read_irradiance_atlas() {

@@ -1,5 +1,6 @@
 // One DDGI irradiance field: its probe grid, the irradiance and distance atlases it owns
-// (persistent history), the probe-ray buffer, and the kernels of one update:
+// (persistent history) or, with the SH basis, the probes' SH coefficients (docs/sh-probes.md),
+// the probe-ray buffer, and the kernels of one update:
 //   fused (the default): trace + shade -> blend both maps and their borders, per probe;
 //   split (the reference the fused update is tested against, and the benchmark's comparison):
 //   trace -> shade -> blend irradiance -> blend distance -> borders, per ray and per texel.
@@ -99,6 +100,8 @@ class IrradianceField {
   };
   Result<AtlasImage> read_irradiance_atlas();
   Result<AtlasImage> read_distance_atlas();
+  // Every probe's SH coefficients (SH fields only; the atlas reads are for octahedral ones).
+  Result<std::vector<gpu::ShProbe>> read_sh_probes();
 
   VkDescriptorSetLayout sampling_layout() const { return sets_.sampling_layout(); }
   VkDescriptorSet sampling_set() const { return sets_.sampling_set(); }
@@ -171,6 +174,7 @@ class IrradianceField {
   vk::Kernel trace_;  // fused: traces and lights (also the fixed rays)
   vk::Kernel trace_with_shadow_field_;  // only with a shadow field
   vk::Kernel blend_;                    // fused: both maps and their borders, per probe
+  vk::Kernel blend_sh_;                 // SH fields (both paths): coefficients, per probe
   vk::Kernel manage_;
   vk::Kernel raw_trace_;
   vk::Kernel trace_surfels_;  // the split path's kernels
@@ -195,6 +199,7 @@ class IrradianceField {
   uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
+  vk::Buffer sh_;  // ShProbe per probe of an SH field, one otherwise
 };
 
 }  // namespace ddgi

@@ -143,6 +143,40 @@ v1::AtlasMetadata shadow_metadata(const ShadowField& shadow, v1::AtlasKind kind,
   return m;
 }
 
+// One row per probe: its nine SH coefficients, RGB.
+std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
+                                                 const std::vector<gpu::ShProbe>& probes,
+                                                 v1::AtlasFormat format) {
+  const IrradianceFieldParams& p = field.params();
+  AtlasImage image;
+  image.width = 9;
+  image.height = static_cast<uint32_t>(probes.size());
+  image.channels = 3;
+  image.texels.reserve(probes.size() * 27);
+  for (const gpu::ShProbe& probe : probes) {
+    for (const glm::vec3& c : probe.coefficients)
+      image.texels.insert(image.texels.end(), {c.x, c.y, c.z});
+  }
+  v1::AtlasMetadata m;
+  m.set_kind(v1::ATLAS_KIND_SH);
+  m.set_format(format);
+  m.set_width(image.width);
+  m.set_height(image.height);
+  set_grid(m, p.origin, p.spacing, p.counts);
+  m.set_texels_per_probe(9);
+  m.set_tiles_per_row(1);
+  m.set_encoding_gamma(1.0f);
+  m.set_field_updates(field.updates());
+  for (const char* c : {"R", "G", "B"}) m.add_channels(c);
+  const std::array<float, 2> bands = sh_band_scales(p);
+  for (const float scale : {1.0f, bands[0], bands[1]}) m.add_sh_band_scales(scale);
+  m.set_description(
+      "one row per probe (x fastest, then y, then z), nine texels: the L2 SH coefficients of the "
+      "radiance the probe sees (order of shaders/common/sh.glsl: l=0; l=1 m=-1,0,1; l=2 "
+      "m=-2..2), RGB; M = E/pi = sum_l sh_band_scales[l] sum_m L_lm Y_lm(n)");
+  return {std::move(m), std::move(image)};
+}
+
 // One texel per probe: relocation offset and state.
 std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
     const IrradianceField& field, const std::vector<gpu::ProbeState>& states,
@@ -218,6 +252,11 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
                                                                   : shadow->moments_atlas()));
       v1::AtlasMetadata metadata = shadow_metadata(*shadow, kind, format, image);
       return std::make_pair(std::move(metadata), std::move(image));
+    }
+    case v1::ATLAS_KIND_SH: {
+      if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShProbe> probes, field->read_sh_probes());
+      return sh_dump(*field, probes, format);
     }
     case v1::ATLAS_KIND_PROBE_STATES: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");

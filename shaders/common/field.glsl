@@ -1,5 +1,6 @@
 // The irradiance field (descriptor set 2): probe addressing, ray directions, atlas lookups
-// and the 8-probe cage query (Majercik et al. 2019/2021, Hvezda 2022 ch. 4).
+// and the 8-probe cage query (Majercik et al. 2019/2021, Hvezda 2022 ch. 4), for both probe
+// bases: octahedral maps with visibility, or SH coefficients without (DDISH-GI).
 #ifndef DDGI_COMMON_FIELD_GLSL
 #define DDGI_COMMON_FIELD_GLSL
 
@@ -7,6 +8,7 @@
 
 #include "common/math.glsl"
 #include "shared/field_data.h"
+#include "common/sh.glsl"
 
 layout(set = kFieldSet, binding = kFieldBindingConstants, scalar) readonly buffer FieldBlock {
   FieldConstants field;
@@ -16,6 +18,9 @@ layout(set = kFieldSet, binding = kFieldBindingProbes, scalar) buffer ProbeState
 };
 layout(set = kFieldSet, binding = kFieldBindingIrradiance) uniform sampler2D irradiance_atlas;
 layout(set = kFieldSet, binding = kFieldBindingDistance) uniform sampler2D distance_atlas;
+layout(set = kFieldSet, binding = kFieldBindingSh, scalar) buffer ShProbes {
+  ShProbe sh_probes[];
+};
 
 // --- Probe addressing: p = x + counts.x * (y + counts.y * z) -----------------------------
 ivec3 probe_grid_coord(uint p) {
@@ -76,6 +81,42 @@ vec2 atlas_uv(uint p, vec3 d, uint texels, vec2 atlas_size) {
 }
 
 // --- The cage query -----------------------------------------------------------------------
+// Chebyshev visibility of point `biased` from octahedral probe p's distance moments.
+float chebyshev_visibility(uint p, vec3 biased, vec3 n) {
+  const vec3 probe_to_point = biased - probe_position(p);
+  const float r = length(probe_to_point);
+  const vec2 moments = textureLod(distance_atlas,
+                                  atlas_uv(p, safe_normalize(probe_to_point, n),
+                                           field.distance_texels, field.distance_atlas_size),
+                                  0.0)
+                           .rg;
+  if (r <= moments.x) return 1.0;
+  const float variance = abs(moments.y - moments.x * moments.x);
+  const float d = r - moments.x;
+  const float chebyshev = variance / max(variance + d * d, 1e-30);
+  return chebyshev * chebyshev * chebyshev;
+}
+
+// What the cage blends of probe p around normal n: octahedral irradiance at gamma 2 (2021
+// paper, fig. 3: decode to gamma 2 for the blend, square after), SH irradiance linearly.
+vec3 probe_blend_value(uint p, vec3 n) {
+  if (field.basis == kFieldBasisSh) {
+    return sh_irradiance(sh_probes[p], n, field.sh_band1, field.sh_band2);
+  }
+  const vec3 encoded =
+      textureLod(irradiance_atlas,
+                 atlas_uv(p, n, field.irradiance_texels, field.irradiance_atlas_size), 0.0)
+          .rgb;
+  return pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma * 0.5));
+}
+
+// M of probe p alone around n (the probe view).
+vec3 probe_irradiance(uint p, vec3 n) {
+  const vec3 value = probe_blend_value(p, n);
+  return field.basis == kFieldBasisOctahedral ? value * value : value;
+}
+
+// --- The cage query -----------------------------------------------------------------------
 // Cosine-weighted mean radiance M (= E / pi, see field_data.h) arriving at `p` around normal
 // `n`. `to_viewer`: unit direction from p to whoever looks at it (camera or probe).
 vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
@@ -109,20 +150,8 @@ vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
     const float wrap = (dot(to_probe, n) + 1.0) * 0.5;
     weight *= wrap * wrap + 0.2;
 
-    // Chebyshev visibility from the probe's distance moments, seen from the biased point.
-    const vec3 probe_to_point = biased - probe_pos;
-    const float r = length(probe_to_point);
-    const vec2 moments =
-        textureLod(distance_atlas,
-                   atlas_uv(probe, safe_normalize(probe_to_point, n), field.distance_texels,
-                            field.distance_atlas_size),
-                   0.0).rg;
-    if (r > moments.x) {
-      const float variance = abs(moments.y - moments.x * moments.x);
-      const float d = r - moments.x;
-      const float chebyshev = variance / max(variance + d * d, 1e-30);
-      weight *= chebyshev * chebyshev * chebyshev;
-    }
+    // Octahedral probes know what they see (their distance moments); SH probes do not.
+    if (field.basis == kFieldBasisOctahedral) weight *= chebyshev_visibility(probe, biased, n);
 
     // Crush tiny weights: light leaking through thin walls shows at low weights.
     weight = max(weight, 1e-6);
@@ -131,17 +160,12 @@ vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
 
     weight *= max(tri.x * tri.y * tri.z, 0.0);
 
-    const vec3 encoded = textureLod(irradiance_atlas,
-                                    atlas_uv(probe, n, field.irradiance_texels,
-                                             field.irradiance_atlas_size),
-                                    0.0).rgb;
-    // 2021 paper, fig. 3: decode to gamma 2 for the blend, square after.
-    sum += weight * pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma * 0.5));
+    sum += weight * probe_blend_value(probe, n);
     weight_sum += weight;
   }
   if (!(weight_sum > 0.0)) return vec3(0.0);
   const vec3 blended = sum / weight_sum;
-  return sanitize_radiance(blended * blended);
+  return sanitize_radiance(field.basis == kFieldBasisOctahedral ? blended * blended : blended);
 }
 
 #endif

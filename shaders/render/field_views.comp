@@ -75,11 +75,7 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
   }
   if (best_probe == 0xFFFFFFFFu) return background;
   const vec3 n = normalize(o + d * best_t - probe_position(best_probe));
-  const vec3 encoded = textureLod(irradiance_atlas,
-                                  atlas_uv(best_probe, n, field.irradiance_texels,
-                                           field.irradiance_atlas_size),
-                                  0.0).rgb;
-  const vec3 irradiance = pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma));
+  const vec3 irradiance = probe_irradiance(best_probe, n);
   const vec3 state_colors[4] = vec3[4](vec3(0.1, 0.9, 0.1), vec3(0.9, 0.8, 0.1),
                                        vec3(0.2, 0.4, 1.0), vec3(0.9, 0.1, 0.1));
   const float rim = smoothstep(0.35, 0.1, abs(dot(n, d)));

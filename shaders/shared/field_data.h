@@ -18,6 +18,7 @@ DDGI_CONST uint kFieldBindingConstants = 0;   // FieldConstants (one)
 DDGI_CONST uint kFieldBindingProbes = 1;      // ProbeState per probe
 DDGI_CONST uint kFieldBindingIrradiance = 2;  // sampler2D, RGBA32F, encoded irradiance
 DDGI_CONST uint kFieldBindingDistance = 3;    // sampler2D, RG32F, mean distance and its square
+DDGI_CONST uint kFieldBindingSh = 4;          // ShProbe per probe (SH fields; one otherwise)
 
 // Set 1 of the field-update kernels: the rays and the atlases as storage images.
 DDGI_CONST uint kFieldUpdateSet = 1;
@@ -47,6 +48,10 @@ DDGI_CONST uint kProbeStateCount = 4u;
 DDGI_CONST uint kRayHit = 1u;
 DDGI_CONST uint kRayFrontFace = 2u;
 
+// FieldConstants::basis: what each probe stores (IrradianceFieldParams::basis).
+DDGI_CONST uint kFieldBasisOctahedral = 0u;  // octahedral irradiance and distance maps (DDGI)
+DDGI_CONST uint kFieldBasisSh = 1u;          // L2 spherical harmonics of radiance (DDISH-GI)
+
 struct ProbeState {
   vec3 offset;  // from the grid position (relocation); zero until relocation runs
   uint flags;
@@ -59,6 +64,12 @@ struct ProbeState {
 struct ProbeRay {
   vec3 radiance;  // towards the probe (0 from back faces and from fixed rays, which are not lit)
   float distance;
+};
+
+// An SH field's probe: radiance projected on the nine real SH functions of bands 0-2
+// (shaders/common/sh.glsl gives their order), RGB each.
+struct ShProbe {
+  vec3 coefficients[9];
 };
 
 // The split update only (field_trace_surfels, then field_shade): the surface a ray found,
@@ -104,9 +115,9 @@ struct FieldConstants {
   float min_frontface_distance;   // relocation keeps probes this far from front faces
   float backface_threshold;       // more back-face hits than this fraction: inside geometry
   uint emitter_samples;           // > 0: probe rays sample emitters and carry no emission
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  uint basis;                     // kFieldBasis*
+  float sh_band1;                 // SH fields: A_1 / pi x window of band 1 (shaders/common/sh.glsl)
+  float sh_band2;                 // the same for band 2
 };
 
 // What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
@@ -156,6 +167,9 @@ static_assert(sizeof(ProbeRay) == 16);
 static_assert(offsetof(ProbeRay, radiance) == 0);
 static_assert(offsetof(ProbeRay, distance) == 12);
 
+static_assert(sizeof(ShProbe) == 108);
+static_assert(offsetof(ShProbe, coefficients) == 0);
+
 static_assert(sizeof(ProbeSurfel) == 52);
 static_assert(offsetof(ProbeSurfel, position) == 0);
 static_assert(offsetof(ProbeSurfel, distance) == 12);
@@ -196,9 +210,9 @@ static_assert(offsetof(FieldConstants, probe_offset_limit) == 196);
 static_assert(offsetof(FieldConstants, min_frontface_distance) == 200);
 static_assert(offsetof(FieldConstants, backface_threshold) == 204);
 static_assert(offsetof(FieldConstants, emitter_samples) == 208);
-static_assert(offsetof(FieldConstants, pad0) == 212);
-static_assert(offsetof(FieldConstants, pad1) == 216);
-static_assert(offsetof(FieldConstants, pad2) == 220);
+static_assert(offsetof(FieldConstants, basis) == 212);
+static_assert(offsetof(FieldConstants, sh_band1) == 216);
+static_assert(offsetof(FieldConstants, sh_band2) == 220);
 
 static_assert(sizeof(FieldDispatch) == 32);
 static_assert(offsetof(FieldDispatch, count) == 0);

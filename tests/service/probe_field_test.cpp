@@ -1,6 +1,7 @@
 // The client-side probe evaluator (proto/rpc/probe_field.h) against the server's own query:
 // the field is downloaded as a client gets it (rpc/probe_download.h: DumpAtlas of irradiance,
-// distance and probe states; GetFieldParams for bias and crush threshold), and irradiance at random
+// distance and probe states, or of SH coefficients and probe states for SH fields;
+// GetFieldParams for the basis, bias and crush threshold), and irradiance at random
 // points and normals is computed both ways. Two scenes: the Cornell box (an open room) and two
 // rooms joined by a door (probes near walls, relocated and switched off). The result must not be
 // trivial: the irradiance is far from zero, and a control evaluation with a wrong parameter
@@ -85,9 +86,10 @@ class ProbeFieldTest : public ServiceTest {
     return a;
   }
 
-  void check_scene(const std::string& scene) {
+  void check_scene(const std::string& scene, const char* basis = "octahedral") {
     v1::CreateSessionRequest create = small_session_request(scene, 8);
-    add_params(create.mutable_field_params(), {{"counts", "4,4,4"}, {"rays_per_probe", "32"}});
+    add_params(create.mutable_field_params(),
+               {{"counts", "4,4,4"}, {"rays_per_probe", "32"}, {"basis", basis}});
     const std::string session = create_session(create).session_id();
     ASSERT_FALSE(session.empty());
     uint64_t updates = 0;
@@ -99,9 +101,11 @@ class ProbeFieldTest : public ServiceTest {
     ASSERT_EQ(reply.field_updates(), updates) << "the field changed between the downloads";
 
     const Agreement agreement = compare(field, request, reply);
-    // The control: the same evaluation with the encoding gamma off by one.
+    // The control: the same evaluation with the encoding gamma off by one (SH: band 1 at half
+    // its factor).
     ProbeField wrong = field;
     wrong.irradiance_gamma += 1.0f;
+    wrong.sh_band_scales[1] *= 0.5f;
     const Agreement control = compare(wrong, request, reply);
     int off = 0, moved = 0;
     for (size_t i = 0; i < field.probe_states.size(); i += 4) {
@@ -110,14 +114,15 @@ class ProbeFieldTest : public ServiceTest {
                field.probe_states[i + 2] != 0.0f;
     }
     std::printf(
-        "%s: %zu probes (%d off, %d relocated), %d points, mean irradiance %.4f; client vs "
-        "server: max |diff| %.2e, max relative %.2e; control (gamma + 1): max relative %.2e\n",
-        scene.c_str(), field.probe_states.size() / 4, off, moved, request.points_size(),
+        "%s (%s): %zu probes (%d off, %d relocated), %d points, mean irradiance %.4f; client vs "
+        "server: max |diff| %.2e, max relative %.2e; control: max relative %.2e\n",
+        scene.c_str(), basis, field.probe_states.size() / 4, off, moved, request.points_size(),
         agreement.mean_gpu, agreement.max_abs, agreement.max_rel, control.max_rel);
     // Tolerance: 5e-5 relative (below 1e-3, absolute against 1e-3). The evaluator does the
     // shader's arithmetic in the same order; what differs is the GPU's pow, sqrt and texture
     // filtering (lavapipe filters in float; GPUs with 8-bit filter weights differ more).
-    // Measured on lavapipe: 7.1e-6 (Cornell box), 1.2e-6 (two rooms).
+    // Measured on lavapipe: 7.1e-6 (Cornell box), 1.2e-6 (two rooms); SH fields 8.8e-7 and
+    // 3.2e-6 (controls 2.8 and 0.43).
     EXPECT_GT(agreement.mean_gpu, 0.01) << "the field is dark: the comparison proves little";
     EXPECT_LT(agreement.max_rel, 5e-5);
     EXPECT_GT(control.max_rel, 1e-2) << "the control agreed: the comparison is blind";
@@ -130,6 +135,14 @@ TEST_F(ProbeFieldTest, ClientEvaluatorAgreesWithQueryIrradianceInTheCornellBox) 
 
 TEST_F(ProbeFieldTest, ClientEvaluatorAgreesWithQueryIrradianceInTwoRooms) {
   check_scene("two_rooms_open");
+}
+
+TEST_F(ProbeFieldTest, ShClientEvaluatorAgreesWithQueryIrradianceInTheCornellBox) {
+  check_scene("cornell_box", "sh");
+}
+
+TEST_F(ProbeFieldTest, ShClientEvaluatorAgreesWithQueryIrradianceInTwoRooms) {
+  check_scene("two_rooms_open", "sh");
 }
 
 }  // namespace

@@ -136,6 +136,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"rays_per_probe", "64"},
       {"fixed_rays", "16"},
       {"max_ray_distance", "100"},
+      {"basis", "sh"},
+      {"sh_window", "3.5"},
       {"irradiance_texels", "6"},
       {"distance_texels", "12"},
       {"hysteresis", "0.9"},
@@ -165,6 +167,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.rays_per_probe = 64;
   expected.fixed_rays = 16;
   expected.max_ray_distance = 100.0f;
+  expected.basis = ProbeBasis::kSh;
+  expected.sh_window = 3.5f;
   expected.irradiance_texels = 6;
   expected.distance_texels = 12;
   expected.hysteresis = 0.9f;

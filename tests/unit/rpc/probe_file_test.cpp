@@ -75,7 +75,8 @@ TEST(ProbeFile, DamagedFilesAreRefusedNamingWhy) {
   lying.replace(lying.find("\"counts\":[2,3,2]"), 16, "\"counts\":[2,9,2]");
   EXPECT_NE(refused(lying), "accepted");
   std::string huge = good;
-  huge.replace(huge.find("\"irradiance_size\":[24,18]"), 25, "\"irradiance_size\":[99999,1]");
+  // The same length, so that the header keeps its size.
+  huge.replace(huge.find("\"irradiance_size\":[24,18]"), 25, "\"irradiance_size\":[1e6,1]");
   EXPECT_NE(refused(huge).find("over 65536"), std::string::npos) << refused(huge);
   std::string broken = good;
   broken[13] = '!';
@@ -101,6 +102,51 @@ TEST(ProbeField, UniformLightGivesItsRadianceEverywhere) {
   off.field.probe_states[2 * 4 + 3] = 0.0f;  // probe (0, 1, 0), in the point's cage
   EXPECT_NEAR(probe_field_irradiance(off.field, points[0], normals[0], normals[0]).y, radiance,
               1e-5f);
+}
+
+// An SH field of 2x2x2 probes that all see radiance L from above (y > 0) and nothing below:
+// the L2 projection of that light is exact for irradiance (its band-2 part is zero), so M must
+// be L facing up, L / 2 facing sideways, 0 facing down, and (1 + ny) / 2 L between.
+ProbeFile sky_sh_field(float radiance) {
+  ProbeFile file;
+  ProbeField& f = file.field;
+  f.basis = kProbeBasisSh;
+  f.counts[0] = f.counts[1] = f.counts[2] = 2;
+  f.spacing = {1.0f, 1.0f, 1.0f};
+  f.probe_states.assign(8 * 4, 0.0f);
+  f.sh.assign(8 * 27, 0.0f);
+  const float pi = 3.14159265f;
+  for (size_t p = 0; p < 8; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      f.sh[p * 27 + 0 * 3 + c] = radiance * 2.0f * pi * 0.282094792f;  // L_00
+      f.sh[p * 27 + 1 * 3 + c] = radiance * pi * 0.488602512f;         // y's band-1 function
+    }
+  }
+  file.session_id = "s0123456789abcdef";
+  return file;
+}
+
+TEST(ProbeField, ShSkyGivesTheAnalyticIrradiance) {
+  const float radiance = 0.8f;
+  ProbeFile file = sky_sh_field(radiance);
+  ASSERT_STREQ(probe_field_problem(file.field), "");
+  Result<ProbeFile> back = decode_probe_file(encode_probe_file(file));
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->field.sh, file.field.sh);
+  EXPECT_EQ(back->field.basis, kProbeBasisSh);
+  for (const float ny : {1.0f, 0.6f, 0.0f, -0.5f, -1.0f}) {
+    const ProbeVec3 n{std::sqrt(1.0f - ny * ny), ny, 0.0f};
+    const ProbeVec3 e = probe_field_irradiance(back->field, {0.5f, 0.3f, 0.6f}, n, n);
+    EXPECT_NEAR(e.y, radiance * (1.0f + ny) * 0.5f, 1e-5f) << "n.y " << ny;
+  }
+  // The control: band 1 at the factor of band 2 no longer gives the sky.
+  back->field.sh_band_scales[1] = 0.25f;
+  const ProbeVec3 up{0.0f, 1.0f, 0.0f};
+  EXPECT_GT(std::abs(probe_field_irradiance(back->field, {0.5f, 0.3f, 0.6f}, up, up).y - radiance),
+            0.1f);
+  // A file whose coefficients are short is refused.
+  file.field.sh.pop_back();
+  EXPECT_STRNE(probe_field_problem(file.field), "");
 }
 
 }  // namespace
