@@ -63,7 +63,7 @@ int irradiance(Cli& cli) {
 void add_probe_commands(std::vector<CommandSpec>& commands) {
   commands.push_back({"probes",
                       "--session ID --out FILE",
-                      "save the session's irradiance field (probe grid, atlases, states) as one "
+                      "save the session's irradiance field (probe grid, atlases or SH, states) as one "
                       "file for `irradiance` and the web client (docs/probe-files.md)",
                       {"session", "out"},
                       {},

@@ -1,7 +1,7 @@
-// The irradiance field from a probes file (`ddgi-client probes`, docs/probe-files.md) and its
-// irradiance query, written as the server's shader writes it (shaders/common/field.glsl,
-// sample_irradiance) and as proto/rpc/probe_field.cpp does in C++: so a page can shade from
-// probes itself. Arithmetic is rounded to float32 (Math.fround) where the shader's order
+// The irradiance field from a probes file (`ddgi-client probes`, docs/probe-files.md), with
+// octahedral or SH probes, and its irradiance query, written as the server's shader writes it
+// (shaders/common/field.glsl, sample_irradiance; shaders/common/sh.glsl) and as
+// proto/rpc/probe_field.cpp does in C++: so a page can shade from probes itself. Arithmetic is rounded to float32 (Math.fround) where the shader's order
 // matters, so results agree with the server's to float rounding.
 
 const f32 = Math.fround;
@@ -21,11 +21,19 @@ export function parseProbeFile(buffer) {
     at += count * 4;
     return values;
   };
+  const probes = header.counts[0] * header.counts[1] * header.counts[2];
+  if (header.basis === 'sh') {
+    return {
+      ...header,
+      sh: take(probes * 27, 'the SH coefficients'),
+      probeStates: take(probes * 4, 'the probe states'),
+    };
+  }
   const [iw, ih] = header.irradiance_size;
   const [dw, dh] = header.distance_size;
-  const probes = header.counts[0] * header.counts[1] * header.counts[2];
   return {
     ...header,
+    basis: 'octahedral',
     irradiance: take(iw * ih * 4, 'the irradiance atlas'),
     distance: take(dw * dh * 2, 'the distance atlas'),
     probeStates: take(probes * 4, 'the probe states'),
@@ -85,6 +93,57 @@ function atlasUv(field, probe, d, texels, width, height) {
   ];
 }
 
+// M (= E / pi) around unit d from SH probe `probe`'s coefficients (sh.glsl, sh_irradiance).
+function shIrradiance(field, probe, d) {
+  const [x, y, z] = d;
+  const [k0, k1, k2, k20, k22] = [0.282094792, 0.488602512, 1.092548431, 0.315391565,
+    0.546274215].map(f32);
+  const basis = [
+    k0, f32(k1 * y), f32(k1 * z), f32(k1 * x), f32(f32(k2 * x) * y), f32(f32(k2 * y) * z),
+    f32(k20 * f32(f32(f32(3 * z) * z) - 1)), f32(f32(k2 * x) * z),
+    f32(k22 * f32(f32(x * x) - f32(y * y))),
+  ];
+  const c = field.sh.subarray(probe * 27, probe * 27 + 27);
+  const [, band1Scale, band2Scale] = field.sh_band_scales.map(f32);
+  const out = [];
+  for (let ch = 0; ch < 3; ch += 1) {
+    let band1 = 0;
+    let band2 = 0;
+    for (let k = 1; k < 4; k += 1) band1 = f32(band1 + f32(c[k * 3 + ch] * basis[k]));
+    for (let k = 4; k < 9; k += 1) band2 = f32(band2 + f32(c[k * 3 + ch] * basis[k]));
+    const m = f32(f32(f32(c[ch] * basis[0]) + f32(band1Scale * band1)) + f32(band2Scale * band2));
+    out.push(Math.max(m, 0));
+  }
+  return out;
+}
+
+// What the cage blends of one probe around n (field.glsl, probe_blend_value).
+function probeBlendValue(field, probe, n) {
+  if (field.basis === 'sh') return shIrradiance(field, probe, n);
+  const [is, it] = atlasUv(field, probe, n, field.irradiance_texels, field.irradiance_size[0],
+    field.irradiance_size[1]);
+  const encoded = bilinear(field.irradiance, field.irradiance_size[0],
+    field.irradiance_size[1], 4, is, it);
+  // 2021 paper, fig. 3: decode to gamma 2 for the blend, square after.
+  const exponent = f32(field.irradiance_gamma * 0.5);
+  return encoded.slice(0, 3).map((v) => f32(Math.pow(Math.max(v, 0), exponent)));
+}
+
+// Chebyshev visibility of `biased` from octahedral probe `probe` (field.glsl).
+function chebyshevVisibility(field, probe, probePosition, biased, n) {
+  const probeToPoint = minus(biased, probePosition);
+  const r = f32(Math.sqrt(dot(probeToPoint, probeToPoint)));
+  const [ds, dt] = atlasUv(field, probe, safeNormalize(probeToPoint, n), field.distance_texels,
+    field.distance_size[0], field.distance_size[1]);
+  const [mean, mean2] = bilinear(field.distance, field.distance_size[0],
+    field.distance_size[1], 2, ds, dt);
+  if (r <= mean) return 1;
+  const variance = Math.abs(f32(mean2 - f32(mean * mean)));
+  const d = f32(r - mean);
+  const chebyshev = f32(variance / Math.max(f32(variance + f32(d * d)), 1e-30));
+  return f32(f32(chebyshev * chebyshev) * chebyshev);
+}
+
 // Cosine-weighted mean radiance E / pi at `position` around unit `normal` ([x, y, z] arrays),
 // as the server's QueryIrradiance returns it; `toViewer` defaults to the normal.
 export function probeIrradiance(field, position, normal, toViewer = normal) {
@@ -121,37 +180,23 @@ export function probeIrradiance(field, position, normal, toViewer = normal) {
     const wrap = f32(f32(dot(toProbe, n) + 1) * 0.5);
     let weight = f32(f32(wrap * wrap) + 0.2);
 
-    const probeToPoint = minus(biased, probePosition);
-    const r = f32(Math.sqrt(dot(probeToPoint, probeToPoint)));
-    const [ds, dt] = atlasUv(field, probe, safeNormalize(probeToPoint, n), field.distance_texels,
-      field.distance_size[0], field.distance_size[1]);
-    const [mean, mean2] = bilinear(field.distance, field.distance_size[0],
-      field.distance_size[1], 2, ds, dt);
-    if (r > mean) {
-      const variance = Math.abs(f32(mean2 - f32(mean * mean)));
-      const d = f32(r - mean);
-      const chebyshev = f32(variance / Math.max(f32(variance + f32(d * d)), 1e-30));
-      weight = f32(weight * f32(f32(chebyshev * chebyshev) * chebyshev));
+    // Octahedral probes know what they see (their distance moments); SH probes do not.
+    if (field.basis !== 'sh') {
+      weight = f32(weight * chebyshevVisibility(field, probe, probePosition, biased, n));
     }
     weight = Math.max(weight, f32(1e-6));
     const crush = f32(field.weight_crush_threshold);
     if (weight < crush) weight = f32(weight * f32(f32(weight * weight) / f32(crush * crush)));
     weight = f32(weight * Math.max(trilinear, 0));
 
-    const [is, it] = atlasUv(field, probe, n, field.irradiance_texels, field.irradiance_size[0],
-      field.irradiance_size[1]);
-    const encoded = bilinear(field.irradiance, field.irradiance_size[0],
-      field.irradiance_size[1], 4, is, it);
-    const exponent = f32(field.irradiance_gamma * 0.5);
-    for (let c = 0; c < 3; c += 1) {
-      sum[c] = f32(sum[c] + f32(f32(Math.pow(Math.max(encoded[c], 0), exponent)) * weight));
-    }
+    const value = probeBlendValue(field, probe, n);
+    for (let c = 0; c < 3; c += 1) sum[c] = f32(sum[c] + f32(value[c] * weight));
     weightSum = f32(weightSum + weight);
   }
   if (!(weightSum > 0)) return [0, 0, 0];
   return sum.map((v) => {
     const blended = f32(v / weightSum);
-    const value = f32(blended * blended);
+    const value = field.basis === 'sh' ? blended : f32(blended * blended);
     return Number.isFinite(value) ? Math.max(value, 0) : 0;
   });
 }

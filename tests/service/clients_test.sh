@@ -93,9 +93,7 @@ c query --session "$session" --points '0,0.1,0,0,1,0;0.3,0.5,0,-1,0,0' >"$work/q
 expect "$work/query.json" '"irradiance"'
 # Shading from downloaded probes, without the server: the C++ evaluator (ddgi-client
 # irradiance) and the web client's (web/probes.js) against the server's query at 64 random
-# points; both must agree to 5e-5 relative and see light.
-c probes --session "$session" --out "$work/probes.bin" >"$work/probes.json"
-expect "$work/probes.json" '"probes": 8'
+# points; both must agree to 5e-5 relative and see light. Octahedral probes, then SH probes.
 python3 -c "
 import random
 random.seed(5)
@@ -104,10 +102,13 @@ for i in range(64):
     n = [random.gauss(0, 1) for _ in range(3)]
     length = sum(x * x for x in n) ** 0.5
     print(','.join('%.6f' % x for x in p + [x / length for x in n]))" >"$work/points.txt"
-c query --session "$session" --points-file "$work/points.txt" >"$work/server_irradiance.json"
-c irradiance --probes "$work/probes.bin" --points-file "$work/points.txt" \
-  >"$work/local_irradiance.json"
-python3 - "$work/server_irradiance.json" "$work/local_irradiance.json" <<'PY' ||
+check_probe_evaluators() {
+  c probes --session "$session" --out "$work/probes.bin" >"$work/probes.json"
+  expect "$work/probes.json" '"probes": 8'
+  c query --session "$session" --points-file "$work/points.txt" >"$work/server_irradiance.json"
+  c irradiance --probes "$work/probes.bin" --points-file "$work/points.txt" \
+    >"$work/local_irradiance.json"
+  python3 - "$work/server_irradiance.json" "$work/local_irradiance.json" "$1" <<'PY' ||
 import json, sys
 server, local = (json.load(open(path)) for path in sys.argv[1:3])
 assert server["field_updates"] == local["field_updates"], "the field changed in between"
@@ -116,12 +117,18 @@ for a, b in zip(server["irradiance"], local["irradiance"]):
     for c in "xyz":
         worst = max(worst, abs(a.get(c, 0) - b.get(c, 0)) / max(a.get(c, 0), 1e-3))
         mean += a.get(c, 0) / (3 * len(server["irradiance"]))
-print(f"ddgi-client irradiance vs QueryIrradiance: mean {mean:.4f}, max relative {worst:.2e}")
+print(f"{sys.argv[3]}: ddgi-client irradiance vs QueryIrradiance: mean {mean:.4f}, max relative {worst:.2e}")
 assert mean > 0.01 and worst <= 5e-5 and len(local["irradiance"]) == 64
 PY
-  fail "ddgi-client irradiance disagrees with the server's query"
-node "$(dirname "$0")/../web/probes_check.mjs" "$work/probes.bin" "$work/points.txt" \
-  "$work/server_irradiance.json" || fail "web/probes.js disagrees with the server's query"
+    fail "$1: ddgi-client irradiance disagrees with the server's query"
+  node "$(dirname "$0")/../web/probes_check.mjs" "$work/probes.bin" "$work/points.txt" \
+    "$work/server_irradiance.json" || fail "$1: web/probes.js disagrees with the server's query"
+}
+check_probe_evaluators octahedral
+c params set --session "$session" basis=sh >/dev/null
+c frame --session "$session" --width 8 --height 8 --out "$work/sh_frame.png" >/dev/null
+check_probe_evaluators sh
+grep -q '"basis":"sh"' "$work/probes.bin" || fail "the SH field was saved as octahedral"
 if c irradiance --probes "$work/points.txt" --points '0,0,0,0,1,0' >/dev/null 2>&1; then
   fail "a file that is no probe file was accepted"
 fi
