@@ -456,6 +456,7 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   const std::array<float, 2> bands = sh_band_scales(params_);
   c.sh_band1 = bands[0];
   c.sh_band2 = bands[1];
+  c.probe_bounces = params_.probe_bounces;
   return c;
 }
 

@@ -117,7 +117,7 @@ class IrradianceField {
     return uint64_t(last_update_rays_.probes) * last_update_rays_.per_probe;
   }
   // Rays traced by the last update: probe rays plus one shadow ray per traced light per shaded
-  // ray.
+  // ray (not the path vertices of probe_bounces, whose number is random).
   uint64_t rays_per_update() const;
 
  private:

@@ -118,6 +118,10 @@ struct FieldConstants {
   uint basis;                     // kFieldBasis*
   float sh_band1;                 // SH fields: A_1 / pi x window of band 1 (shaders/common/sh.glsl)
   float sh_band2;                 // the same for band 2
+  uint probe_bounces;             // > 0: probe-ray hits trace paths this long, not the field
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
@@ -179,7 +183,7 @@ static_assert(offsetof(ProbeSurfel, emission) == 32);
 static_assert(offsetof(ProbeSurfel, flags) == 44);
 static_assert(offsetof(ProbeSurfel, geometric_normal_oct) == 48);
 
-static_assert(sizeof(FieldConstants) == 224);
+static_assert(sizeof(FieldConstants) == 240);
 static_assert(offsetof(FieldConstants, origin) == 0);
 static_assert(offsetof(FieldConstants, rays_per_probe) == 12);
 static_assert(offsetof(FieldConstants, spacing) == 16);
@@ -213,6 +217,10 @@ static_assert(offsetof(FieldConstants, emitter_samples) == 208);
 static_assert(offsetof(FieldConstants, basis) == 212);
 static_assert(offsetof(FieldConstants, sh_band1) == 216);
 static_assert(offsetof(FieldConstants, sh_band2) == 220);
+static_assert(offsetof(FieldConstants, probe_bounces) == 224);
+static_assert(offsetof(FieldConstants, pad0) == 228);
+static_assert(offsetof(FieldConstants, pad1) == 232);
+static_assert(offsetof(FieldConstants, pad2) == 236);
 
 static_assert(sizeof(FieldDispatch) == 32);
 static_assert(offsetof(FieldDispatch, count) == 0);

@@ -65,6 +65,52 @@ TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
   EXPECT_LE(worst, 0.02f) << "rho " << rho << ", expected " << expected;
 }
 
+// The same furnace with the probe rays' light traced as paths (probe_bounces) instead of read
+// from the previous field: no feedback, so every update is an unbiased estimate of the whole
+// series (Russian roulette, a cap far beyond it), and the probes converge as soon as the noise
+// is averaged.
+class PathTracedFurnaceTest
+    : public FieldTest,
+      public ::testing::WithParamInterface<std::tuple<vk::TraceBackend, ProbeBasis>> {};
+
+TEST_P(PathTracedFurnaceTest, ConvergesToAnalyticRadiance) {
+  const auto [backend, basis] = GetParam();
+  // rho 0.5: the roulette's noise (it keeps 1 / 16 of the paths past the fourth vertex) stays
+  // well below the bound; a bias (lost or doubled light) would not.
+  const float le = 1.0f, rho = 0.5f;
+  IrradianceFieldParams params;
+  params.origin = {-0.5f, 0.5f, -0.5f};
+  params.spacing = {1.0f, 1.0f, 1.0f};
+  params.counts = {2, 2, 2};
+  params.rays_per_probe = 64;
+  params.basis = basis;
+  params.probe_bounces = 64;
+  params.hysteresis = 0.98f;  // averages the roulette's noise over ~100 updates
+  FieldSetup s = make_field_setup(load_white_box(rho, le), params, backend);
+  ASSERT_TRUE(s.field);
+  ASSERT_TRUE(s.field->update(150, DirectMode::kTracedShadows).ok());
+  auto answers = s.field->query(furnace_queries());
+  ASSERT_TRUE(answers.ok()) << answers.error().message;
+  const float expected = le / (1.0f - rho);
+  float worst = 0.0f;
+  for (const glm::vec3& m : *answers) {
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(m[c] - expected) / expected);
+  }
+  double mean = 0.0;
+  for (const glm::vec3& m : *answers) mean += (m.r + m.g + m.b) / (3.0 * answers->size());
+  std::printf(
+      "path-traced update, basis %s: mean %.4f (expected %.4f), worst relative error %.2e\n",
+      basis == ProbeBasis::kSh ? "sh" : "octahedral", mean, expected, worst);
+  EXPECT_LE(worst, 0.02f);
+}
+
+// The pipeline backend (slow on lavapipe) with one basis: the paths are the same code.
+INSTANTIATE_TEST_SUITE_P(
+    Backends, PathTracedFurnaceTest,
+    ::testing::Values(std::make_tuple(vk::TraceBackend::kRayQuery, ProbeBasis::kOctahedral),
+                      std::make_tuple(vk::TraceBackend::kRayQuery, ProbeBasis::kSh),
+                      std::make_tuple(vk::TraceBackend::kPipeline, ProbeBasis::kSh)));
+
 // The field after several updates (multiple bounces, shadow rays, visibility feedback) is the
 // same on both backends: identical rays, identical shading code, so only float rounding of the
 // traversal may differ.

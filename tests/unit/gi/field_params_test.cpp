@@ -148,6 +148,7 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"distance_exponent", "40"},
       {"backface_distance_scale", "0.15"},
       {"self_shadow_bias", "0.35"},
+      {"probe_bounces", "3"},
       {"energy_conservation", "0.95"},
       {"weight_crush_threshold", "0.1"},
       {"relocation_iterations", "3"},
@@ -179,6 +180,7 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.distance_exponent = 40.0f;
   expected.backface_distance_scale = 0.15f;
   expected.self_shadow_bias = 0.35f;
+  expected.probe_bounces = 3;
   expected.energy_conservation = 0.95f;
   expected.weight_crush_threshold = 0.1f;
   expected.relocation_iterations = 3;
