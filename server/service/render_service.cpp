@@ -9,6 +9,7 @@
 #include "service/atlas_stream.h"
 #include "service/frame_stream.h"
 #include "service/grpc_status.h"
+#include "service/probe_stream.h"
 #include "service/text.h"
 
 #ifndef DDGI_VERSION
@@ -501,6 +502,43 @@ grpc::ServerWriteReactor<v1::Frame>* RenderServiceImpl::StreamFrames(
   return reactor;
 }
 
+grpc::ServerWriteReactor<v1::ProbeUpdate>* RenderServiceImpl::StreamProbes(
+    grpc::CallbackServerContext* context, const v1::StreamProbesRequest* request) {
+  ProbeStreamOptions options;
+  if (request->change_threshold() != 0.0f) options.change_threshold = request->change_threshold();
+  if (request->full_refresh_interval() != 0) {
+    options.full_refresh_interval = request->full_refresh_interval();
+  }
+  auto* reactor = new ProbeStreamReactor(options);
+  std::shared_ptr<ProbeStreamState> state = reactor->state();
+  const std::string session_id = request->session_id();
+  auto fail = [&](const grpc::Status& status) {
+    record("StreamProbes", session_id, status);
+    state->finish(status);
+    return reactor;
+  };
+  if (grpc::Status denied = auth_.check(*context); !denied.ok()) return fail(denied);
+  if (Status refused = refusal(); !refused.ok()) return fail(to_grpc(refused.error()));
+  const float threshold = request->change_threshold();
+  if (!std::isfinite(threshold) || threshold < 0.0f || threshold > 1.0f) {
+    return fail(to_grpc(invalid_argument("change_threshold must be finite and in [0, 1] (got " +
+                                         std::to_string(threshold) + ")")));
+  }
+  if (request->full_refresh_interval() > 100000) {
+    return fail(to_grpc(invalid_argument("full_refresh_interval must be in [0, 100000] (got " +
+                                         std::to_string(request->full_refresh_interval()) + ")")));
+  }
+  auto session = sessions_.find(session_id);
+  if (!session.ok()) return fail(to_grpc(session.error()));
+  std::weak_ptr<Session> weak = *session;
+  reactor->set_on_done([this, weak, state, session_id] {
+    record("StreamProbes", session_id, grpc::Status::OK);
+    if (auto live = weak.lock()) live->detach_probe_stream(state);
+  });
+  (*session)->attach_probe_stream(state);
+  return reactor;
+}
+
 grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
     grpc::CallbackServerContext* context, const v1::DumpAtlasRequest* request) {
   // Leave room for the chunk's own fields inside the message limit.
@@ -518,7 +556,7 @@ grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
   v1::AtlasKind kind = request->kind();
   if (!v1::AtlasKind_IsValid(kind) || kind == v1::ATLAS_KIND_UNSPECIFIED) {
     return fail(to_grpc(invalid_argument(
-        "kind must be IRRADIANCE, DISTANCE, SHADOW, SHADOW_MOMENTS or PROBE_STATES (got " +
+        "kind must be IRRADIANCE, DISTANCE, SHADOW, SHADOW_MOMENTS, PROBE_STATES or SH (got " +
         std::to_string(int(kind)) + ")")));
   }
   v1::AtlasFormat format = request->format();

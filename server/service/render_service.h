@@ -76,6 +76,8 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
   grpc::ServerUnaryReactor* RenderFrame(grpc::CallbackServerContext* context,
                                         const v1::RenderFrameRequest* request,
                                         v1::Frame* reply) override;
+  grpc::ServerWriteReactor<v1::ProbeUpdate>* StreamProbes(
+      grpc::CallbackServerContext* context, const v1::StreamProbesRequest* request) override;
   grpc::ServerWriteReactor<v1::Frame>* StreamFrames(
       grpc::CallbackServerContext* context, const v1::StreamFramesRequest* request) override;
   grpc::ServerWriteReactor<v1::AtlasChunk>* DumpAtlas(grpc::CallbackServerContext* context,

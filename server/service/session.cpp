@@ -379,6 +379,33 @@ void Session::detach_stream(std::shared_ptr<FrameStreamState> stream) {
       [](const Status&) {});
 }
 
+void Session::attach_probe_stream(std::shared_ptr<ProbeStreamState> stream) {
+  loop_.enqueue(
+      false,
+      [this, stream](Completion finish) {
+        if (Status has_field = require_field(v1::FIELD_KIND_IRRADIANCE); !has_field.ok()) {
+          finish(has_field);
+          return;
+        }
+        state_.probe_streams.push_back(stream);
+        LOG_INFO << "probe stream attached session=" << state_.id;
+        finish(ok_status());
+      },
+      [stream](const Status& status) {
+        if (!status.ok()) stream->finish(to_grpc(status.error()));
+      });
+}
+
+void Session::detach_probe_stream(std::shared_ptr<ProbeStreamState> stream) {
+  loop_.enqueue(
+      false,
+      [this, stream](Completion finish) {
+        std::erase(state_.probe_streams, stream);
+        finish(ok_status());
+      },
+      [](const Status&) {});
+}
+
 void Session::query(std::vector<IrradianceQuery> points, v1::QueryIrradianceReply* reply,
                     Completion done) {
   auto shared_points = std::make_shared<std::vector<IrradianceQuery>>(std::move(points));

@@ -80,6 +80,9 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void attach_stream(std::string view_id, ViewConfig config, std::optional<v1::Camera> camera,
                      std::shared_ptr<FrameStreamState> stream);
   void detach_stream(std::shared_ptr<FrameStreamState> stream);
+  // StreamProbes: the stream gets a snapshot of the field after every update from now on.
+  void attach_probe_stream(std::shared_ptr<ProbeStreamState> stream);
+  void detach_probe_stream(std::shared_ptr<ProbeStreamState> stream);
   void query(std::vector<IrradianceQuery> points, v1::QueryIrradianceReply* reply, Completion done);
   // Reads an atlas and encodes it; `done` gets the metadata and bytes.
   using AtlasDone = std::function<void(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>>)>;
@@ -137,6 +140,9 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void deliver(InFlightFrame& frame);
   // Delivers the frames in flight of batches before `index`, oldest first.
   void deliver_older_than(uint64_t index);
+  // After an iteration's frames: updates the field if no frame did, and offers its snapshot to
+  // every probe stream (the frames are finished first: the snapshot reads the field back).
+  void stream_probes(const std::shared_ptr<FrameBatch>& batch);
   // Waits until the GPU is done with every frame in flight (reading nothing back).
   Status wait_for_frames_on_gpu();
 

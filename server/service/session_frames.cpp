@@ -14,7 +14,7 @@
 namespace ddgi::service {
 
 bool Session::wants_frame() {
-  return state_.views.wants_frame() || !state_.one_offs.empty();
+  return state_.views.wants_frame() || !state_.one_offs.empty() || !state_.probe_streams.empty();
 }
 
 void Session::produce_frame(uint64_t index, const CommandStamp& last_applied) {
@@ -26,6 +26,31 @@ void Session::produce_frame(uint64_t index, const CommandStamp& last_applied) {
   // This iteration's frames are on the queue behind the previous one's: read those back now.
   deliver_older_than(index);
   render_one_offs(batch);
+  stream_probes(batch);
+}
+
+void Session::stream_probes(const std::shared_ptr<FrameBatch>& batch) {
+  std::erase_if(state_.probe_streams, [](const auto& stream) { return stream->ended(); });
+  if (state_.probe_streams.empty()) return;
+  finish_frames();
+  Result<std::shared_ptr<const ProbeSnapshot>> snapshot =
+      [&]() -> Result<std::shared_ptr<const ProbeSnapshot>> {
+    DDGI_TRY(require_field(v1::FIELD_KIND_IRRADIANCE));
+    if (batch->field_due) {
+      DDGI_TRY(state_.scene->update_fields());
+      batch->field_due = false;
+      env_.metrics->field_updates.fetch_add(1);
+    }
+    return take_probe_snapshot(*field());
+  }();
+  for (const auto& stream : state_.probe_streams) {
+    if (snapshot.ok()) {
+      stream->offer(*snapshot);
+    } else {
+      stream->finish(to_grpc(snapshot.error()));
+    }
+  }
+  if (!snapshot.ok()) state_.probe_streams.clear();
 }
 
 void Session::finish_frames() {
@@ -44,6 +69,10 @@ void Session::tear_down(const Error& why, bool failed) {
   finish_frames();  // their waiters get their frames before the rest learn of the close
   state_.views.close_all(why, failed);
   state_.one_offs.close_all(why);
+  for (const auto& stream : state_.probe_streams) {
+    stream->finish(failed ? to_grpc(why) : grpc::Status::OK);
+  }
+  state_.probe_streams.clear();
   state_.scene.reset();
   env_.context->collect_garbage();
   env_.metrics->sessions.fetch_sub(1);

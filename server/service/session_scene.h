@@ -66,6 +66,8 @@ class SessionScene {
   // waiting for it. The renderer is built at the first frame. Building the irradiance field's
   // update may write its host-visible probe list: no earlier update may be in flight then.
   Result<PendingFrame> submit(const FrameSettings& settings, FrameTarget& target, bool field_due);
+  // One update of each field without a frame (probe streams with nobody watching), waited for.
+  Status update_fields() { return gi_->update(1); }
 
  private:
   SessionScene() = default;

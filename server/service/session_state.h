@@ -10,6 +10,7 @@
 #include "service/limits.h"
 #include "service/metrics.h"
 #include "service/one_off_frames.h"
+#include "service/probe_stream.h"
 #include "service/session_scene.h"
 #include "service/session_view.h"
 
@@ -29,6 +30,7 @@ struct SessionState {
   std::unique_ptr<SessionScene> scene;  // null until the first load
   ViewSet views;
   OneOffFrames one_offs;
+  std::vector<std::shared_ptr<ProbeStreamState>> probe_streams;  // StreamProbes calls
 };
 
 }  // namespace ddgi::service

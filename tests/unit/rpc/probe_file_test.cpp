@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "rpc/probe_file.h"
+#include "rpc/probe_stream.h"
 
 namespace ddgi {
 namespace {
@@ -147,6 +148,23 @@ TEST(ProbeField, ShSkyGivesTheAnalyticIrradiance) {
   // A file whose coefficients are short is refused.
   file.field.sh.pop_back();
   EXPECT_STRNE(probe_field_problem(file.field), "");
+}
+
+// The stream's fp16 (rpc/probe_stream.h) against values IEEE binary16 defines exactly.
+TEST(ProbeStream, HalfFloatsRoundToNearestEven) {
+  EXPECT_EQ(float_to_half(1.0f), 0x3c00);
+  EXPECT_EQ(float_to_half(-2.0f), 0xc000);
+  EXPECT_EQ(float_to_half(65504.0f), 0x7bff);
+  EXPECT_EQ(float_to_half(1e9f), 0x7bff) << "beyond the largest half: clamped";
+  EXPECT_EQ(float_to_half(5.9604645e-8f), 0x0001) << "the smallest subnormal";
+  EXPECT_EQ(float_to_half(1.0f + 1.0f / 2048.0f), 0x3c00) << "a tie rounds to even (down)";
+  EXPECT_EQ(float_to_half(1.0f + 3.0f / 2048.0f), 0x3c02) << "a tie rounds to even (up)";
+  EXPECT_EQ(float_to_half(std::nanf("")), 0);
+  for (const float v : {0.0f, 0.1f, 0.37f, 3.14159f, 1000.5f, 6.1e-5f, -7.25f}) {
+    const float back = half_to_float(float_to_half(v));
+    EXPECT_LE(std::abs(back - v), std::abs(v) / 2048.0f + 3e-8f) << v;
+    EXPECT_EQ(float_to_half(back), float_to_half(v)) << "a half survives the round trip";
+  }
 }
 
 }  // namespace
