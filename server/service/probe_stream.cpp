@@ -93,6 +93,8 @@ Result<std::shared_ptr<const ProbeSnapshot>> take_probe_snapshot(IrradianceField
   s->field_updates = field.updates();
   s->grid = grid_of(field.params());
   s->stride = probe_value_count(s->grid);
+  const uint32_t tile = field.params().irradiance_texels + 2 * gpu::kAtlasBorder;
+  s->split = field.params().basis == ProbeBasis::kSh ? s->stride : tile * tile * 3;
   DDGI_TRY(read_values(field, *s));
   DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field.read_probe_states());
   s->states.reserve(states.size() * kProbeStateValues);
@@ -102,6 +104,16 @@ Result<std::shared_ptr<const ProbeSnapshot>> take_probe_snapshot(IrradianceField
                       float((state.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift)});
   }
   return std::shared_ptr<const ProbeSnapshot>(std::move(s));
+}
+
+bool ProbeStreamState::moved(const float* now, const float* known, uint32_t begin,
+                             uint32_t end) const {
+  float difference = 0.0f, magnitude = 1e-6f;
+  for (uint32_t i = begin; i < end; ++i) {
+    difference = std::max(difference, std::abs(now[i] - known[i]));
+    magnitude = std::max({magnitude, std::abs(now[i]), std::abs(known[i])});
+  }
+  return difference > options_.change_threshold * magnitude;
 }
 
 void ProbeStreamState::encode_locked(const ProbeSnapshot& now, bool full) {
@@ -121,12 +133,7 @@ void ProbeStreamState::encode_locked(const ProbeSnapshot& now, bool full) {
     const float* v = &now.values[p * now.stride];
     float* known = &known_values_[p * now.stride];
     if (!full) {
-      float difference = 0.0f, magnitude = 1e-6f;
-      for (uint32_t i = 0; i < now.stride; ++i) {
-        difference = std::max(difference, std::abs(v[i] - known[i]));
-        magnitude = std::max({magnitude, std::abs(v[i]), std::abs(known[i])});
-      }
-      if (!(difference > options_.change_threshold * magnitude)) continue;
+      if (!moved(v, known, 0, now.split) && !moved(v, known, now.split, now.stride)) continue;
       set_bit(changed, p);
     }
     for (uint32_t i = 0; i < now.stride; ++i) {

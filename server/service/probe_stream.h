@@ -25,7 +25,10 @@ namespace ddgi::service {
 struct ProbeSnapshot {
   uint64_t field_updates = 0;
   v1::ProbeGrid grid;
-  uint32_t stride = 0;        // floats per probe in `values`
+  uint32_t stride = 0;  // floats per probe in `values`
+  // Values [0, split) and [split, stride) are judged apart for the change threshold (octahedral
+  // probes: irradiance, then distances, whose magnitudes differ); SH probes: split = stride.
+  uint32_t split = 0;
   std::vector<float> values;  // probe after probe
   std::vector<float> states;  // 4 per probe: offset x, y, z, state
 };
@@ -57,6 +60,8 @@ class ProbeStreamState {
   void act(Action action);  // without the lock
   void write_done(bool ok);
   void reactor_done();
+  // Whether values [begin, end) moved beyond the threshold of their largest magnitude.
+  bool moved(const float* now, const float* known, uint32_t begin, uint32_t end) const;
   // Encodes `now` against known_values_/known_states_ and updates them.
   void encode_locked(const ProbeSnapshot& now, bool full);
 
