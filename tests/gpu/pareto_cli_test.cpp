@@ -73,11 +73,16 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
       "--pt-max-spp 4 --pareto '" +
       (dir_ / "out").string() +
       "' --configs 'default:;16 rays:rays_per_probe=16;small maps:counts=4,4,4,"
-      "irradiance_texels=4,distance_texels=8,rays_per_probe=32'");
+      "irradiance_texels=4,distance_texels=8,rays_per_probe=32;sh probes:basis=sh'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("| scene | front point |"), std::string::npos) << run.out;
   const nlohmann::json doc = nlohmann::json::parse(slurp(dir_ / "out" / "cornell_box.json"));
-  ASSERT_EQ(doc["configs"].size(), 3u);
+  // The probe basis is an axis like any parameter (docs/sh-probes.md).
+  ASSERT_EQ(doc["configs"].size(), 4u);
+  EXPECT_EQ(doc["configs"][3]["assignments"][0], "basis=sh");
+  const double sh_ratio = doc["configs"][3]["full"]["mean_ratio"];
+  EXPECT_GT(sh_ratio, 0.5);
+  EXPECT_LT(sh_ratio, 2.0);
   EXPECT_EQ(doc["configs"][1]["assignments"][0], "rays_per_probe=16");
   // A vector value keeps its commas (counts=4,4,4 is one assignment, not three pieces).
   ASSERT_EQ(doc["configs"][2]["assignments"].size(), 4u);
@@ -101,7 +106,7 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
   // beaten on both axes by a point on it.
   const nlohmann::json& front = doc["front"];
   ASSERT_FALSE(front.empty());
-  std::vector<bool> on_front(3, false);
+  std::vector<bool> on_front(4, false);
   for (size_t i = 0; i < front.size(); ++i) {
     on_front[front[i]["config"].get<size_t>()] = true;
     if (i > 0) {
@@ -109,7 +114,7 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
       EXPECT_LT(front[i]["flip"].get<double>(), front[i - 1]["flip"].get<double>());
     }
   }
-  for (size_t c = 0; c < 3; ++c) {
+  for (size_t c = 0; c < 4; ++c) {
     if (on_front[c]) continue;
     const double ms = doc["configs"][c]["total_ms"], flip = doc["configs"][c]["full"]["flip"];
     bool beaten = false;
@@ -119,7 +124,8 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
 
   const std::string svg = slurp(dir_ / "out" / "cornell_box.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
-  for (const char* text : {"Pareto front", "path tracing (spp)", "16 rays", "small maps"}) {
+  for (const char* text :
+       {"Pareto front", "path tracing (spp)", "16 rays", "small maps", "sh probes"}) {
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   }
 }
