@@ -48,6 +48,7 @@ export class DdgiSocket {
     await this.opened;
     const id = this.nextId++;
     if (name === 'streamFrames') this.streamId = id;
+    if (name === 'streamProbes') this.probeStreamId = id;
     const reply = new Promise((resolve, reject) => this.pending.set(id, { resolve, reject, name }));
     this.ws.send(JSON.stringify({ id: String(id), [name]: request }));
     return reply;
@@ -62,8 +63,16 @@ export class DdgiSocket {
     const reply = JSON.parse(data);
     const id = Number(reply.id);
     const waiting = this.pending.get(id);
-    if (reply.streamEnded && (!waiting || waiting.name !== 'stopFrames')) {
+    // Probe updates (StreamProbes, docs/probe-stream.md) go to onProbeUpdate(update), set by
+    // whoever started the probe stream; its end to onProbeStreamEnded(status).
+    if (reply.probeUpdate) {
+      if (id === this.probeStreamId) this.onProbeUpdate?.(reply.probeUpdate);
+      return;
+    }
+    const stopping = waiting && (waiting.name === 'stopFrames' || waiting.name === 'stopProbes');
+    if (reply.streamEnded && !stopping) {
       if (id === this.streamId) this.onStreamEnded(reply.streamEnded);
+      if (id === this.probeStreamId) this.onProbeStreamEnded?.(reply.streamEnded);
       return;
     }
     if (!waiting) {

@@ -115,6 +115,26 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
     DDGI_ASSIGN_OR_RETURN(trace_with_shadow_field_,
                           update_kernel("field_trace_shadow_field", true, kLinearWorkgroup, true));
   }
+  return create_path_kernels(params_.probe_bounces > 0);
+}
+
+Status IrradianceField::create_path_kernels(bool wanted) {
+  if (!wanted || trace_paths_.valid()) return ok_status();
+  DDGI_ASSIGN_OR_RETURN(trace_paths_, update_kernel("field_trace_paths", true, kLinearWorkgroup));
+  if (shadow_field_) {
+    DDGI_ASSIGN_OR_RETURN(
+        trace_with_shadow_field_paths_,
+        update_kernel("field_trace_shadow_field_paths", true, kLinearWorkgroup, true));
+  }
+  return ok_status();
+}
+
+Status IrradianceField::check_path_fits(const IrradianceFieldParams& params, FieldUpdatePath path) {
+  if (params.probe_bounces > 0 && path == FieldUpdatePath::kSplit) {
+    return failed_precondition(
+        "probe_bounces > 0 traces paths in the fused update only; the split update path (a "
+        "benchmark reference) reads the field at probe-ray hits");
+  }
   return ok_status();
 }
 
@@ -223,6 +243,7 @@ Status IrradianceField::create_surfels() {
 }
 
 Status IrradianceField::set_update_path(FieldUpdatePath path) {
+  DDGI_TRY(check_path_fits(params_, path));
   if (path == FieldUpdatePath::kSplit && !shade_.valid()) DDGI_TRY(create_split_kernels());
   if (path == FieldUpdatePath::kSplit && !surfels_) DDGI_TRY(create_surfels());
   update_path_ = path;
@@ -410,6 +431,8 @@ Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
 
 Status IrradianceField::set_params(const IrradianceFieldParams& params) {
   DDGI_TRY(validate(params));
+  DDGI_TRY(check_path_fits(params, update_path_));
+  DDGI_TRY(create_path_kernels(params.probe_bounces > 0));  // before anything changes
   const IrradianceFieldParams old = params_;
   DDGI_TRY(replace_params<IrradianceFieldParams>(
       params_, params, grid_changed(old, params),
@@ -507,7 +530,10 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
     return work;
   };
   if (update_path_ == FieldUpdatePath::kFused) {
-    const vk::Kernel& trace = reads_shadow_field ? trace_with_shadow_field_ : trace_;
+    const bool paths = params_.probe_bounces > 0;
+    const vk::Kernel& trace =
+        reads_shadow_field ? (paths ? trace_with_shadow_field_paths_ : trace_with_shadow_field_)
+                           : (paths ? trace_paths_ : trace_);
     passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
                                  {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
                                  {&rays_}));

@@ -128,6 +128,11 @@ class IrradianceField {
   Status create_surfels();
   // The split path's kernels, built when it is first chosen (the service never uses it).
   Status create_split_kernels();
+  // The fused trace with paths from each hit, built the first time they are `wanted`
+  // (probe_bounces > 0).
+  Status create_path_kernels(bool wanted);
+  // The split path has no path-tracing form: FAILED_PRECONDITION for that pair.
+  static Status check_path_fits(const IrradianceFieldParams& params, FieldUpdatePath path);
   // A kernel of the update set's layouts (+ the shadow field's sampling set as set 3).
   Result<vk::Kernel> update_kernel(const char* name, bool traces, glm::uvec3 workgroup,
                                    bool reads_shadow_field = false) const;
@@ -173,8 +178,10 @@ class IrradianceField {
   FieldSets sets_;    // sampling (set 2 of frames), update and query sets; query kernel; timer
   vk::Kernel trace_;  // fused: traces and lights (also the fixed rays)
   vk::Kernel trace_with_shadow_field_;  // only with a shadow field
-  vk::Kernel blend_;                    // fused: both maps and their borders, per probe
-  vk::Kernel blend_sh_;                 // SH fields (both paths): coefficients, per probe
+  vk::Kernel trace_paths_;              // probe_bounces > 0: paths from each hit
+  vk::Kernel trace_with_shadow_field_paths_;
+  vk::Kernel blend_;     // fused: both maps and their borders, per probe
+  vk::Kernel blend_sh_;  // SH fields (both paths): coefficients, per probe
   vk::Kernel manage_;
   vk::Kernel raw_trace_;
   vk::Kernel trace_surfels_;  // the split path's kernels

@@ -19,6 +19,7 @@ WebConnection::WebConnection(v1::RenderService::Stub& stub, Send send, Metrics& 
 
 WebConnection::~WebConnection() {
   stream_.reset();
+  probe_stream_.reset();
 }
 
 void WebConnection::handle_text(std::string_view text) {
@@ -99,6 +100,16 @@ v1::WebReply WebConnection::run(const v1::WebRequest& request) {
       stream_.reset();
       reply.mutable_stream_ended()->set_code("OK");
       return reply;
+    case v1::WebRequest::kQueryIrradiance:
+      status =
+          forward(&Stub::QueryIrradiance, request.query_irradiance(), reply.mutable_irradiance());
+      break;
+    case v1::WebRequest::kStreamProbes:
+      return start_probe_stream(request.id(), request.stream_probes());
+    case v1::WebRequest::kStopProbes:
+      probe_stream_.reset();
+      reply.mutable_stream_ended()->set_code("OK");
+      return reply;
     case v1::WebRequest::CALL_NOT_SET:
       break;  // parse_web_request refuses these
   }
@@ -117,6 +128,17 @@ v1::WebReply WebConnection::start_stream(uint64_t id, const v1::StreamFramesRequ
   };
   stream_ = std::make_unique<WebFrameStream>(stub_, token_, request, std::move(send_frame),
                                              std::move(ended), metrics_);
+  v1::WebReply reply;
+  reply.set_id(id);
+  reply.mutable_stream_started();
+  return reply;
+}
+
+v1::WebReply WebConnection::start_probe_stream(uint64_t id,
+                                               const v1::StreamProbesRequest& request) {
+  probe_stream_.reset();  // one probe stream per connection: the new one replaces it
+  auto send = [this](const v1::WebReply& reply) { return send_(false, web_reply_text(reply)); };
+  probe_stream_ = std::make_unique<WebProbeStream>(stub_, token_, request, id, std::move(send));
   v1::WebReply reply;
   reply.set_id(id);
   reply.mutable_stream_started();

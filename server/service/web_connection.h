@@ -16,6 +16,7 @@
 #include "ddgi/v1/web.pb.h"
 #include "service/metrics.h"
 #include "service/web_frame_stream.h"
+#include "service/web_probe_stream.h"
 
 namespace ddgi::service {
 
@@ -25,7 +26,7 @@ class WebConnection {
   using Send = std::function<bool(bool binary, std::string_view bytes)>;
 
   WebConnection(v1::RenderService::Stub& stub, Send send, Metrics& metrics);
-  // Ends the frame stream (waits for its threads).
+  // Ends the frame and probe streams (waits for their threads).
   ~WebConnection();
 
   // One text message from the browser: runs the call and sends its reply.
@@ -42,6 +43,7 @@ class WebConnection {
                                                                        const Request&, Response*),
                        const Request& request, Response* response);
   v1::WebReply start_stream(uint64_t id, const v1::StreamFramesRequest& request);
+  v1::WebReply start_probe_stream(uint64_t id, const v1::StreamProbesRequest& request);
   void send_reply(const v1::WebReply& reply);
 
   v1::RenderService::Stub& stub_;
@@ -49,6 +51,7 @@ class WebConnection {
   Metrics& metrics_;
   std::string token_;
   std::unique_ptr<WebFrameStream> stream_;
+  std::unique_ptr<WebProbeStream> probe_stream_;
 };
 
 }  // namespace ddgi::service

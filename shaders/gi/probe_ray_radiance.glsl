@@ -3,6 +3,9 @@
 // feedback, one bounce per update) or, with probe_bounces > 0, a path traced on from the hit
 // with next-event estimation at every vertex (DDISH-GI's update; docs/sh-probes.md compares
 // them). Shared by the fused trace (field_trace.glsl) and the split shade (field_shade.glsl).
+// The path form is a kernel variant of its own (DDGI_PROBE_PATHS, built only for fields that
+// ask for it): a second traversal inlined in every probe-ray kernel more than doubled their
+// compile time on lavapipe.
 // Compiled twice: with DDGI_SHADOW_FIELD_SET the shadow field's modes read it here too;
 // without, they shade probe-ray hits with traced shadow rays.
 #ifndef DDGI_GI_PROBE_RAY_RADIANCE_GLSL
@@ -21,6 +24,7 @@ vec3 vertex_light(Surface s, vec3 direction, inout Rng rng) {
   return s.emission + direct;
 }
 
+#ifdef DDGI_PROBE_PATHS
 // Cosine-weighted mean radiance (M) arriving at `s` estimated by one path of at most
 // field.probe_bounces further vertices: at each, its own light (vertex_light) plus albedo times
 // the next. Russian roulette after the fourth vertex keeps it unbiased below the cap.
@@ -49,6 +53,7 @@ vec3 traced_irradiance(Surface s, inout Rng rng) {
   }
   return sum;
 }
+#endif
 
 // `index`: the ray's index in the ray buffer (seeds its random numbers).
 vec3 probe_hit_radiance(Surface s, vec3 direction, uint index) {
@@ -56,10 +61,12 @@ vec3 probe_hit_radiance(Surface s, vec3 direction, uint index) {
   // Emitter light reaches surfaces by sampling (here and per pixel) when emitter_samples > 0,
   // not through the field: what probes see of an emitter would count it twice.
   const vec3 own = vertex_light(s, direction, rng);
-  const vec3 arriving = field.probe_bounces > 0u
-                            ? traced_irradiance(s, rng)
-                            : field.energy_conservation *
-                                  sample_irradiance(s.position, s.normal, -direction);
+#ifdef DDGI_PROBE_PATHS
+  const vec3 arriving = traced_irradiance(s, rng);
+#else
+  const vec3 arriving =
+      field.energy_conservation * sample_irradiance(s.position, s.normal, -direction);
+#endif
   return own + s.albedo * arriving;
 }
 

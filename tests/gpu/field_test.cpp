@@ -88,6 +88,10 @@ TEST_P(PathTracedFurnaceTest, ConvergesToAnalyticRadiance) {
   params.hysteresis = 0.98f;  // averages the roulette's noise over ~100 updates
   FieldSetup s = make_field_setup(load_white_box(rho, le), params, backend);
   ASSERT_TRUE(s.field);
+  // The split update (a benchmark reference) has no path form: refused, naming why.
+  const Status split = s.field->set_update_path(FieldUpdatePath::kSplit);
+  ASSERT_FALSE(split.ok());
+  EXPECT_NE(split.error().message.find("probe_bounces"), std::string::npos);
   ASSERT_TRUE(s.field->update(150, DirectMode::kTracedShadows).ok());
   auto answers = s.field->query(furnace_queries());
   ASSERT_TRUE(answers.ok()) << answers.error().message;

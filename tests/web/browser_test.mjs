@@ -9,7 +9,11 @@
 // the server's refusal of a wrong one; with the right one it lists the scenes; "Create session"
 // shows a frame within a deadline, and a drag on the frame moves the camera: the next frames
 // carry the camera command (lastCommandSeq) and differ from the one before the drag by far more
-// than frames of a still camera differ from each other (the control).
+// than frames of a still camera differ from each other (the control). Then, on a second server
+// pacing its sessions at 2 updates a second: the page follows an SH field with StreamProbes
+// (web/probe_stream.js) and shades from it with web/probes.js; at the same field update that
+// matches the server's QueryIrradiance to fp16 precision, and the stream's first message alone
+// (the control) does not.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -162,6 +166,92 @@ async function streamShowsAndDragMovesTheCamera(page) {
   }
 }
 
+// Tolerance of the page's streamed-field irradiance against the server's query: fp16 values
+// (4.9e-4 relative each), as ProbeStreamTest allows in C++.
+const STREAMED_TOLERANCE = 5e-3;
+
+async function probesStreamToThePage(page) {
+  const result = await page.evaluate(async () => {
+    const { DdgiSocket } = await import('/socket.js');
+    const { applyProbeUpdate } = await import('/probe_stream.js');
+    const { probeIrradiance } = await import('/probes.js');
+    const socket = new DdgiSocket(`${location.origin.replace(/^http/, 'ws')}/ws`,
+      { onFrame() {}, onStreamEnded() {}, onClose() {} });
+    await socket.call('hello', { token: '' });
+    const session = await socket.call('createSession', {
+      scene: { name: 'cornell_box' },
+      warmupUpdates: 4,
+      fieldParams: [{ name: 'counts', value: '4,4,4' }, { name: 'rays_per_probe', value: '64' },
+        { name: 'hysteresis', value: '0.5' }, { name: 'basis', value: 'sh' }],
+    });
+    const stream = {};
+    const first = {};
+    const sizes = [];
+    const threeMessages = new Promise((resolve, reject) => {
+      socket.onProbeUpdate = (update) => {
+        try {
+          if (!stream.messages) applyProbeUpdate(first, update);
+          applyProbeUpdate(stream, update);
+          sizes.push({ full: update.full, values: update.values.length });
+          if (stream.messages === 3) resolve();
+        } catch (error) {
+          reject(error);
+        }
+      };
+    });
+    await socket.call('streamProbes', { sessionId: session.sessionId, changeThreshold: 1e-6 });
+    await threeMessages;
+    await socket.call('stopProbes', {});
+    // Points inside the grid, normals all around.
+    const points = [];
+    let seed = 7;
+    const random = () => { seed = (seed * 16807) % 2147483647; return seed / 2147483647; };
+    for (let i = 0; i < 128; i += 1) {
+      const n = [random() - 0.5, random() - 0.5, random() - 0.5];
+      const length = Math.hypot(...n);
+      points.push({
+        position: { x: -0.7 + 1.4 * random(), y: 0.2 + 1.6 * random(), z: -0.7 + 1.4 * random() },
+        normal: { x: n[0] / length, y: n[1] / length, z: n[2] / length },
+      });
+    }
+    const reply = await socket.call('queryIrradiance', { sessionId: session.sessionId, points });
+    const worst = (field) => {
+      let max = 0;
+      let mean = 0;
+      points.forEach((point, i) => {
+        const p = [point.position.x, point.position.y, point.position.z];
+        const n = [point.normal.x, point.normal.y, point.normal.z];
+        const ours = probeIrradiance(field, p, n);
+        const theirs = [reply.irradiance[i].x ?? 0, reply.irradiance[i].y ?? 0,
+          reply.irradiance[i].z ?? 0];
+        for (let c = 0; c < 3; c += 1) {
+          max = Math.max(max, Math.abs(ours[c] - theirs[c]) / Math.max(theirs[c], 0.01));
+          mean += theirs[c] / (3 * points.length);
+        }
+      });
+      return { max, mean };
+    };
+    await socket.call('closeSession', { sessionId: session.sessionId });
+    socket.close();
+    return {
+      streamed: worst(stream.field),
+      control: worst(first.field),
+      streamUpdates: stream.fieldUpdates,
+      queryUpdates: Number(reply.fieldUpdates),
+      sizes,
+    };
+  });
+  check(result.sizes[0].full && !result.sizes[1].full && !result.sizes[2].full,
+    'the probe stream starts with a full message, then deltas');
+  check(result.streamUpdates === result.queryUpdates,
+    `the page's field and the query come from one update (${result.streamUpdates})`);
+  check(result.streamed.mean > 0.01, `the streamed field is lit (mean ${result.streamed.mean.toFixed(4)})`);
+  check(result.streamed.max < STREAMED_TOLERANCE,
+    `web/probes.js on the streamed SH field matches QueryIrradiance: max relative ${result.streamed.max.toExponential(2)} (< ${STREAMED_TOLERANCE})`);
+  check(result.control.max > 10 * STREAMED_TOLERANCE,
+    `the first message alone does not (control: ${result.control.max.toExponential(2)})`);
+}
+
 async function main() {
   const dir = mkdtempSync(join(tmpdir(), 'ddgi-web-'));
   const tokenFile = join(dir, 'token');
@@ -185,8 +275,18 @@ async function main() {
     await streamShowsAndDragMovesTheCamera(page);
     if (failed) throw failed;
   } finally {
-    await browser.close();
     await stopServer(server);
+  }
+  const paced = startServer(['--max-fps', '2']);
+  try {
+    const page = await browser.newPage();
+    page.on('pageerror', (error) => { failed ??= new Error(`page error: ${error.message}`); });
+    await page.goto(await paced.url);
+    await probesStreamToThePage(page);
+    if (failed) throw failed;
+  } finally {
+    await browser.close();
+    await stopServer(paced);
   }
 }
 
