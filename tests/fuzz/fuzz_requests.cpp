@@ -267,6 +267,8 @@ void dispatch(size_t method, const uint8_t* data, size_t size, uint8_t flags) {
       return stream(&Stub::DumpAtlas, name, data, size, flags);
     case 19:
       return unary(&Stub::QueryIrradiance, name, data, size, flags);
+    case 20:
+      return stream(&Stub::StreamProbes, name, data, size, flags);
   }
 }
 

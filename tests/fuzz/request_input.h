@@ -12,7 +12,7 @@
 namespace ddgi::fuzz {
 
 // Every RPC of ddgi.v1.RenderService, in the order the input's first byte counts them.
-inline constexpr std::array<std::string_view, 20> kMethods = {
+inline constexpr std::array<std::string_view, 21> kMethods = {
     "GetServerInfo",  "CreateSession",
     "LoadScene",      "CloseSession",
     "ListSessions",   "GetSession",
@@ -22,7 +22,8 @@ inline constexpr std::array<std::string_view, 20> kMethods = {
     "RemoveLight",    "SetInstanceTransform",
     "GetFieldParams", "SetFieldParams",
     "RenderFrame",    "StreamFrames",
-    "DumpAtlas",      "QueryIrradiance"};
+    "DumpAtlas",      "QueryIrradiance",
+    "StreamProbes"};
 
 enum InputFlag : uint8_t {
   kLiveSession = 1,  // session_id := the live session's

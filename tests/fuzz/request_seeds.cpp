@@ -65,6 +65,9 @@ constexpr Seed kSeeds[] = {
   {"StreamFrames", kLiveWithView, ""},
   {"DumpAtlas", kLive, R"(kind: ATLAS_KIND_IRRADIANCE format: ATLAS_FORMAT_EXR)"},
   {"DumpAtlas", kLive, R"(kind: ATLAS_KIND_PROBE_STATES)"},
+  {"DumpAtlas", kLive, R"(kind: ATLAS_KIND_SH)"},
+  {"StreamProbes", kLive, ""},
+  {"StreamProbes", kLive, R"(change_threshold: 0.05 full_refresh_interval: 2)"},
   {"QueryIrradiance", kLive, R"(points { position { y: 1 } normal { y: 1 } }
       points { position { x: 0.5 y: 0.2 } normal { x: -1 } to_viewer { z: 1 } })"},
 };
