@@ -58,8 +58,9 @@ TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
   for (const glm::vec3& m : *answers) {
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(m[c] - expected) / expected);
   }
-  // The acceptance's 2%. Measured worst relative error, the same on both backends: 1.0e-4
-  // (rho 0.2), 1.7e-3 (0.5), 1.4e-2 (0.8; the update count leaves about rho^n of the series).
+  // The acceptance's 2%. Measured worst relative error, the same on both backends: octahedral
+  // 1.0e-4 (rho 0.2), 1.7e-3 (0.5), 1.4e-2 (0.8; the update count leaves about rho^n of the
+  // series); SH 2.3e-3, 3.1e-3, 1.45e-2 (bands 1-2 of a uniform field are noise, not zero).
   std::printf("basis %s, rho %.1f: worst relative error %.2e\n",
               basis == ProbeBasis::kSh ? "sh" : "octahedral", rho, worst);
   EXPECT_LE(worst, 0.02f) << "rho " << rho << ", expected " << expected;
