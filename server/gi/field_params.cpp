@@ -178,14 +178,14 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
          rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
 }
 
-std::array<float, 2> sh_band_scales(const IrradianceFieldParams& p) {
+std::array<float, 3> sh_band_scales(const IrradianceFieldParams& p) {
   auto window = [&](int band) {
     if (p.sh_window <= 0.0f) return 1.0;
     if (float(band) >= p.sh_window) return 0.0;
     return 0.5 * (1.0 + std::cos(3.14159265358979 * band / p.sh_window));
   };
   // A_l / pi: 2/3 and 1/4 (Ramamoorthi and Hanrahan 2001).
-  return {float(2.0 / 3.0 * window(1)), float(0.25 * window(2))};
+  return {1.0f, float(2.0 / 3.0 * window(1)), float(0.25 * window(2))};
 }
 
 }  // namespace ddgi

@@ -197,9 +197,10 @@ struct AtlasLayout {
   glm::uvec2 distance_size{0};
 };
 AtlasLayout atlas_layout(const IrradianceFieldParams& params);
-// The factors of SH bands 1 and 2 in M = E / pi: A_l / pi times the ringing window
-// (FieldConstants::sh_band1/2, shaders/common/sh.glsl).
-std::array<float, 2> sh_band_scales(const IrradianceFieldParams& params);
+// The factors of SH bands 0, 1 and 2 in M = E / pi: A_l / pi times the ringing window (band 0:
+// 1; bands 1 and 2 are FieldConstants::sh_band1/2, shaders/common/sh.glsl), as the dumps and
+// the probe stream give them to clients.
+std::array<float, 3> sh_band_scales(const IrradianceFieldParams& params);
 // Bytes of GPU memory the field's atlases and ray buffers need (checked against the budget
 // before anything is allocated).
 uint64_t field_gpu_bytes(const IrradianceFieldParams& params);

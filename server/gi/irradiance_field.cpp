@@ -476,9 +476,9 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.backface_threshold = params_.backface_threshold;
   c.emitter_samples = params_.emitter_samples;
   c.basis = static_cast<uint32_t>(params_.basis);
-  const std::array<float, 2> bands = sh_band_scales(params_);
-  c.sh_band1 = bands[0];
-  c.sh_band2 = bands[1];
+  const std::array<float, 3> bands = sh_band_scales(params_);
+  c.sh_band1 = bands[1];
+  c.sh_band2 = bands[2];
   c.probe_bounces = params_.probe_bounces;
   return c;
 }
@@ -629,6 +629,15 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
   DDGI_TRY(vk::download_image(context_, image, atlas.texels.data(),
                               atlas.texels.size() * sizeof(float)));
   return atlas;
+}
+
+std::vector<float> sh_coefficient_values(const std::vector<gpu::ShProbe>& probes) {
+  std::vector<float> values;
+  values.reserve(probes.size() * 27);
+  for (const gpu::ShProbe& probe : probes) {
+    for (const glm::vec3& c : probe.coefficients) values.insert(values.end(), {c.x, c.y, c.z});
+  }
+  return values;
 }
 
 Result<std::vector<gpu::ShProbe>> IrradianceField::read_sh_probes() {

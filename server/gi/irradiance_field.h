@@ -32,6 +32,10 @@ struct IrradianceQuery {
   glm::vec3 to_viewer{0.0f, 1.0f, 0.0f};  // the self-shadow bias leans this way
 };
 
+// The coefficients of SH probes as plain floats: 27 per probe (nine RGB), in probe order, as the
+// dumps and the probe stream send them.
+std::vector<float> sh_coefficient_values(const std::vector<gpu::ShProbe>& probes);
+
 // How an update is split into passes; both give the same atlases (tests/gpu/field_update_test).
 enum class FieldUpdatePath {
   kFused,  // field_trace (trace + shade), field_blend (per probe, borders included)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "shared/field_data.h"
 
@@ -20,6 +21,18 @@ static_assert(gpu::kProbeStateCount == 4, "ProbeStateKind names every kProbe* st
 
 inline ProbeStateKind probe_state(const gpu::ProbeState& probe) {
   return static_cast<ProbeStateKind>((probe.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift);
+}
+
+// Per probe, 4 floats: relocation offset x, y, z and the state (ProbeStateKind), as the dumps
+// and the probe stream send them.
+inline std::vector<float> probe_state_values(const std::vector<gpu::ProbeState>& probes) {
+  std::vector<float> values;
+  values.reserve(probes.size() * 4);
+  for (const gpu::ProbeState& probe : probes) {
+    values.insert(values.end(), {probe.offset.x, probe.offset.y, probe.offset.z,
+                                 float(static_cast<uint32_t>(probe_state(probe)))});
+  }
+  return values;
 }
 
 }  // namespace ddgi

@@ -152,11 +152,7 @@ std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
   image.width = 9;
   image.height = static_cast<uint32_t>(probes.size());
   image.channels = 3;
-  image.texels.reserve(probes.size() * 27);
-  for (const gpu::ShProbe& probe : probes) {
-    for (const glm::vec3& c : probe.coefficients)
-      image.texels.insert(image.texels.end(), {c.x, c.y, c.z});
-  }
+  image.texels = sh_coefficient_values(probes);
   v1::AtlasMetadata m;
   m.set_kind(v1::ATLAS_KIND_SH);
   m.set_format(format);
@@ -168,8 +164,7 @@ std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
   m.set_encoding_gamma(1.0f);
   m.set_field_updates(field.updates());
   for (const char* c : {"R", "G", "B"}) m.add_channels(c);
-  const std::array<float, 2> bands = sh_band_scales(p);
-  for (const float scale : {1.0f, bands[0], bands[1]}) m.add_sh_band_scales(scale);
+  for (const float scale : sh_band_scales(p)) m.add_sh_band_scales(scale);
   m.set_description(
       "one row per probe (x fastest, then y, then z), nine texels: the L2 SH coefficients of the "
       "radiance the probe sees (order of shaders/common/sh.glsl: l=0; l=1 m=-1,0,1; l=2 "
@@ -186,11 +181,7 @@ std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
   image.width = static_cast<uint32_t>(p.counts.x);
   image.height = static_cast<uint32_t>(p.counts.y * p.counts.z);
   image.channels = 4;
-  image.texels.reserve(states.size() * 4);
-  for (const gpu::ProbeState& state : states) {
-    image.texels.insert(image.texels.end(), {state.offset.x, state.offset.y, state.offset.z,
-                                             float(static_cast<uint32_t>(probe_state(state)))});
-  }
+  image.texels = probe_state_values(states);
   v1::AtlasMetadata m;
   m.set_kind(v1::ATLAS_KIND_PROBE_STATES);
   m.set_format(format);

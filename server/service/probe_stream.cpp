@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gi/probe_state.h"
 #include "rpc/probe_stream.h"
 
 namespace ddgi::service {
@@ -23,8 +24,7 @@ v1::ProbeGrid grid_of(const IrradianceFieldParams& p) {
   g.set_self_shadow_bias(p.self_shadow_bias);
   g.set_weight_crush_threshold(p.weight_crush_threshold);
   if (p.basis == ProbeBasis::kSh) {
-    const std::array<float, 2> bands = sh_band_scales(p);
-    for (const float scale : {1.0f, bands[0], bands[1]}) g.add_sh_band_scales(scale);
+    for (const float scale : sh_band_scales(p)) g.add_sh_band_scales(scale);
   } else {
     g.set_irradiance_texels(p.irradiance_texels);
     g.set_distance_texels(p.distance_texels);
@@ -50,15 +50,12 @@ void append_tile(const IrradianceField::AtlasImage& atlas, uint32_t p, uint32_t 
 Status read_values(IrradianceField& field, ProbeSnapshot& s) {
   const IrradianceFieldParams& p = field.params();
   const uint32_t probes = static_cast<uint32_t>(probe_count(p));
-  s.values.reserve(size_t(probes) * s.stride);
   if (p.basis == ProbeBasis::kSh) {
     DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShProbe> sh, field.read_sh_probes());
-    for (const gpu::ShProbe& probe : sh) {
-      for (const glm::vec3& c : probe.coefficients)
-        s.values.insert(s.values.end(), {c.x, c.y, c.z});
-    }
+    s.values = sh_coefficient_values(sh);
     return ok_status();
   }
+  s.values.reserve(size_t(probes) * s.stride);
   DDGI_ASSIGN_OR_RETURN(const IrradianceField::AtlasImage irradiance,
                         field.read_irradiance_atlas());
   DDGI_ASSIGN_OR_RETURN(const IrradianceField::AtlasImage distance, field.read_distance_atlas());
@@ -97,12 +94,7 @@ Result<std::shared_ptr<const ProbeSnapshot>> take_probe_snapshot(IrradianceField
   s->split = field.params().basis == ProbeBasis::kSh ? s->stride : tile * tile * 3;
   DDGI_TRY(read_values(field, *s));
   DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field.read_probe_states());
-  s->states.reserve(states.size() * kProbeStateValues);
-  for (const gpu::ProbeState& state : states) {
-    s->states.insert(s->states.end(),
-                     {state.offset.x, state.offset.y, state.offset.z,
-                      float((state.flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift)});
-  }
+  s->states = probe_state_values(states);
   return std::shared_ptr<const ProbeSnapshot>(std::move(s));
 }
 

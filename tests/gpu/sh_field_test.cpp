@@ -124,11 +124,11 @@ TEST_P(ShFieldTest, HeightLitWorldGivesTheL2Irradiance) {
   auto answers = s.field->query(queries);
   ASSERT_TRUE(answers.ok()) << answers.error().message;
 
-  const std::array<float, 2> bands = sh_band_scales(params);
+  const std::array<float, 3> bands = sh_band_scales(params);
   const std::array<double, 3> l = zonal_coefficients();
   double worst = 0.0;
   for (size_t i = 0; i < heights.size(); ++i) {
-    const double sh = sh_expected(l, heights[i], bands[0], bands[1]);
+    const double sh = sh_expected(l, heights[i], bands[1], bands[2]);
     const double exact = exact_expected(heights[i]);
     std::printf("window %.0f, n.y %+.3f: field %.4f, L2 %.4f, exact %.4f\n", window, heights[i],
                 (*answers)[i].r, sh, exact);
