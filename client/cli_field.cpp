@@ -109,6 +109,34 @@ int atlas(Cli& cli) {
   return 0;
 }
 
+// The session's scene as .glb; progress on stderr in tenths of the size.
+int export_scene(Cli& cli) {
+  v1::ExportSceneRequest request;
+  DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
+  DDGI_CLI_TRY(const std::string out, cli.flags.get_string("out", ""));
+  if (out.empty()) return report(invalid_argument("--out FILE.glb is required"));
+  v1::SceneMetadata metadata;
+  std::string bytes;
+  int shown = 0;
+  auto progress = [&](uint64_t received) {
+    const int tenth = int(10 * received / std::max<uint64_t>(metadata.total_bytes(), 1));
+    if (tenth <= shown) return;
+    shown = tenth;
+    std::fprintf(stderr, "ddgi-client: export-scene: %.1f of %.1f MB\n", double(received) / 1e6,
+                 double(metadata.total_bytes()) / 1e6);
+  };
+  if (const grpc::Status status = fetch_scene(
+          *cli.stub, [&cli] { return cli.context(); }, request, &metadata, &bytes, progress);
+      !status.ok()) {
+    return report(status);
+  }
+  std::ofstream file(out, std::ios::binary);
+  file.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!file) return report(unavailable("cannot write " + out));
+  print_json(metadata);
+  return 0;
+}
+
 // "px,py,pz,nx,ny,nz" per point, points separated by ';' or new lines.
 Result<std::vector<v1::QueryPoint>> parse_points(const std::string& text) {
   std::vector<v1::QueryPoint> points;
@@ -187,6 +215,12 @@ void add_field_commands(std::vector<CommandSpec>& commands) {
        {"session", "kind", "format", "out", "convert"},
        {},
        atlas});
+  commands.push_back({"export-scene",
+                      "--session ID --out FILE.glb",
+                      "the session's scene as it is now (transforms, lights) as binary glTF",
+                      {"session", "out"},
+                      {},
+                      export_scene});
   commands.push_back({"query",
                       "--session ID --points 'px,py,pz,nx,ny,nz;...' | --points-file FILE",
                       "field irradiance (E/pi) at points",

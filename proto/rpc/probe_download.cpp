@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "rpc/chunk_download.h"
+
 namespace ddgi {
 std::vector<float> raw_floats(const std::string& bytes) {
   std::vector<float> values(bytes.size() / sizeof(float));
@@ -88,33 +90,38 @@ grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& co
                          std::string* bytes) {
   const std::unique_ptr<grpc::ClientContext> call = context();
   auto reader = stub.DumpAtlas(call.get(), request);
-  v1::AtlasChunk chunk;
-  bool have_metadata = false;
   bytes->clear();
-  while (reader->Read(&chunk)) {
-    if (chunk.has_metadata()) {
-      *metadata = chunk.metadata();
-      have_metadata = true;
-      bytes->reserve(size_t(std::min<uint64_t>(metadata->total_bytes(), 1ull << 32)));
-      continue;
-    }
-    if (!have_metadata || chunk.offset() != bytes->size() ||
-        bytes->size() + chunk.data().size() > metadata->total_bytes()) {
-      call->TryCancel();
-      (void)reader->Finish();
-      return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                          "atlas chunks out of order or beyond the announced size");
-    }
-    *bytes += chunk.data();
-  }
-  const grpc::Status status = reader->Finish();
-  if (!status.ok()) return status;
-  if (!have_metadata || bytes->size() != metadata->total_bytes()) {
-    return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                        "atlas ended after " + std::to_string(bytes->size()) + " of " +
-                            std::to_string(metadata->total_bytes()) + " bytes");
-  }
-  return grpc::Status::OK;
+  return read_chunks<v1::AtlasChunk, v1::AtlasMetadata>(
+      *call, *reader,
+      [&](const v1::AtlasMetadata& m) {
+        *metadata = m;
+        bytes->reserve(size_t(std::min<uint64_t>(m.total_bytes(), 1ull << 32)));
+        return true;
+      },
+      [&](const std::string& data) {
+        *bytes += data;
+        return true;
+      });
+}
+
+grpc::Status fetch_scene(v1::RenderService::Stub& stub, const ContextFactory& context,
+                         const v1::ExportSceneRequest& request, v1::SceneMetadata* metadata,
+                         std::string* bytes, const std::function<void(uint64_t)>& progress) {
+  const std::unique_ptr<grpc::ClientContext> call = context();
+  auto reader = stub.ExportScene(call.get(), request);
+  bytes->clear();
+  return read_chunks<v1::SceneChunk, v1::SceneMetadata>(
+      *call, *reader,
+      [&](const v1::SceneMetadata& m) {
+        *metadata = m;
+        bytes->reserve(size_t(std::min<uint64_t>(m.total_bytes(), 1ull << 32)));
+        return true;
+      },
+      [&](const std::string& data) {
+        *bytes += data;
+        if (progress) progress(bytes->size());
+        return true;
+      });
 }
 
 Result<DownloadedField> download_probe_field(v1::RenderService::Stub& stub,

@@ -1,5 +1,5 @@
-// Downloading a session's irradiance field as a client does: a whole DumpAtlas stream with its
-// chunks checked, and the field's dumps (irradiance and distance atlases, or SH coefficients;
+// Downloading from a session as a client does: a whole DumpAtlas or ExportScene stream with
+// its chunks checked, and the field's dumps (irradiance and distance atlases, or SH coefficients;
 // probe states) plus the two query parameters put together as a ProbeField (probe_field.h),
 // taken again until every dump comes from one field update.
 // ddgi-client (atlas, probes) and the service tests use it.
@@ -26,6 +26,12 @@ using ContextFactory = std::function<std::unique_ptr<grpc::ClientContext>()>;
 grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& context,
                          const v1::DumpAtlasRequest& request, v1::AtlasMetadata* metadata,
                          std::string* bytes);
+
+// A whole ExportScene stream (the session's scene as .glb), checked as fetch_atlas checks;
+// `progress` (optional) hears the bytes received so far after each chunk.
+grpc::Status fetch_scene(v1::RenderService::Stub& stub, const ContextFactory& context,
+                         const v1::ExportSceneRequest& request, v1::SceneMetadata* metadata,
+                         std::string* bytes, const std::function<void(uint64_t)>& progress = {});
 
 // The float32 texels of a RAW_F32 atlas (little-endian, as the service sends them).
 std::vector<float> raw_floats(const std::string& bytes);

@@ -6,7 +6,7 @@
 #include "gi/field_params.h"
 #include "gi/shadow_params.h"
 #include "rpc/status_code_name.h"
-#include "service/atlas_stream.h"
+#include "service/chunk_stream.h"
 #include "service/frame_stream.h"
 #include "service/grpc_status.h"
 #include "service/probe_stream.h"
@@ -541,11 +541,8 @@ grpc::ServerWriteReactor<v1::ProbeUpdate>* RenderServiceImpl::StreamProbes(
 
 grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
     grpc::CallbackServerContext* context, const v1::DumpAtlasRequest* request) {
-  // Leave room for the chunk's own fields inside the message limit.
-  const size_t chunk_bytes =
-      static_cast<size_t>(std::min<uint64_t>(1ull << 20, limits_.max_message_bytes - 4096));
-  auto* reactor = new AtlasStreamReactor(chunk_bytes);
-  std::shared_ptr<AtlasStreamState> state = reactor->state();
+  auto* reactor = new AtlasStreamReactor(chunk_bytes());
+  auto state = reactor->state();
   const std::string session_id = request->session_id();
   auto fail = [&](const grpc::Status& status) {
     record("DumpAtlas", session_id, status);
@@ -570,6 +567,26 @@ grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
   (*session)->dump_atlas(kind, format, [this, state, session_id](auto dump) {
     record("DumpAtlas", session_id, dump.ok() ? grpc::Status::OK : to_grpc(dump.error()));
     state->deliver(std::move(dump));
+  });
+  return reactor;
+}
+
+grpc::ServerWriteReactor<v1::SceneChunk>* RenderServiceImpl::ExportScene(
+    grpc::CallbackServerContext* context, const v1::ExportSceneRequest* request) {
+  auto* reactor = new SceneStreamReactor(chunk_bytes());
+  auto state = reactor->state();
+  const std::string session_id = request->session_id();
+  auto fail = [&](const grpc::Status& status) {
+    record("ExportScene", session_id, status);
+    state->finish(status);
+    return reactor;
+  };
+  if (grpc::Status denied = auth_.check(*context); !denied.ok()) return fail(denied);
+  auto session = sessions_.find(session_id);
+  if (!session.ok()) return fail(to_grpc(session.error()));
+  (*session)->export_scene([this, state, session_id](auto exported) {
+    record("ExportScene", session_id, exported.ok() ? grpc::Status::OK : to_grpc(exported.error()));
+    state->deliver(std::move(exported));
   });
   return reactor;
 }

@@ -82,6 +82,8 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
       grpc::CallbackServerContext* context, const v1::StreamFramesRequest* request) override;
   grpc::ServerWriteReactor<v1::AtlasChunk>* DumpAtlas(grpc::CallbackServerContext* context,
                                                       const v1::DumpAtlasRequest* request) override;
+  grpc::ServerWriteReactor<v1::SceneChunk>* ExportScene(
+      grpc::CallbackServerContext* context, const v1::ExportSceneRequest* request) override;
   grpc::ServerUnaryReactor* QueryIrradiance(grpc::CallbackServerContext* context,
                                             const v1::QueryIrradianceRequest* request,
                                             v1::QueryIrradianceReply* reply) override;
@@ -97,6 +99,10 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
   Completion completion(grpc::ServerUnaryReactor* reactor, const char* method,
                         std::string session_id);
   void record(const char* method, const std::string& session_id, const grpc::Status& status);
+  // Download chunks (DumpAtlas, ExportScene) leave room for their own fields in the limit.
+  size_t chunk_bytes() const {
+    return static_cast<size_t>(std::min<uint64_t>(1ull << 20, limits_.max_message_bytes - 4096));
+  }
   Result<SceneRequest> scene_request(const v1::SceneSource& source, uint32_t warmup,
                                      bool has_warmup) const;
   // The frame settings of a RenderFrame / StreamFrames request (no view id, or no settings).

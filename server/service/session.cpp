@@ -5,11 +5,14 @@
 // view commands do not, so a moving camera keeps the frames pipelined.
 #include "service/session.h"
 
+#include <thread>
+
 #include "core/log.h"
 #include "gi/field_params.h"
 #include "gi/shadow_params.h"
 #include "service/atlas_export.h"
 #include "service/grpc_status.h"
+#include "service/scene_export.h"
 #include "service/text.h"
 
 namespace ddgi::service {
@@ -437,6 +440,30 @@ void Session::dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone d
           return std::make_pair(std::move(dump.first), std::move(bytes));
         }();
         (*shared_done)(std::move(result));
+      },
+      [shared_done](const Status& status) {
+        if (!status.ok()) (*shared_done)(status.error());
+      });
+}
+
+// ---- Scene export -------------------------------------------------------------------------------
+
+void Session::export_scene(SceneDone done) {
+  auto shared_done = std::make_shared<SceneDone>(std::move(done));
+  loop_.enqueue(
+      false,
+      [this, shared_done](Completion) {
+        auto scene = require_scene();
+        if (!scene.ok()) return (*shared_done)(scene.error());
+        auto copy = std::make_shared<const Scene>((*scene)->gpu_scene().scene());
+        auto lights = std::make_shared<const std::vector<LightSlot>>((*scene)->lights().slots());
+        std::string label = (*scene)->label();
+        std::thread([copy, lights, label, shared_done] {
+          auto exported = export_glb(*copy, *lights);
+          if (!exported.ok()) return (*shared_done)(exported.error());
+          exported->metadata.set_scene(label);
+          (*shared_done)(std::make_pair(std::move(exported->metadata), std::move(exported->glb)));
+        }).detach();
       },
       [shared_done](const Status& status) {
         if (!status.ok()) (*shared_done)(status.error());

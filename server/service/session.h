@@ -87,6 +87,10 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   // Reads an atlas and encodes it; `done` gets the metadata and bytes.
   using AtlasDone = std::function<void(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>>)>;
   void dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone done);
+  // ExportScene: copies the scene and its lights on the loop, then writes the .glb on a thread
+  // of its own (large textured scenes take seconds; the session's frames go on meanwhile).
+  using SceneDone = std::function<void(Result<std::pair<v1::SceneMetadata, std::vector<uint8_t>>>)>;
+  void export_scene(SceneDone done);
 
   // Ends the loop: queued commands fail with UNAVAILABLE, streams end with OK (or both with
   // `reason`, when given: a lost device), GPU memory is freed, then `on_stopped` runs (on the

@@ -1,4 +1,4 @@
-#include "service/atlas_stream.h"
+#include "service/chunk_stream.h"
 
 #include <algorithm>
 
@@ -9,7 +9,8 @@ namespace {
 constexpr int kNothing = 0, kWrite = 1, kFinish = 2;
 }
 
-bool AtlasStreamState::prepare_next_locked() {
+template <typename Chunk>
+bool ChunkStreamState<Chunk>::prepare_next_locked() {
   chunk_.Clear();
   if (!sent_metadata_) {
     *chunk_.mutable_metadata() = metadata_;
@@ -24,7 +25,8 @@ bool AtlasStreamState::prepare_next_locked() {
   return true;
 }
 
-void AtlasStreamState::deliver(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>> dump) {
+template <typename Chunk>
+void ChunkStreamState<Chunk>::deliver(Download dump) {
   int action = kNothing;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -45,7 +47,8 @@ void AtlasStreamState::deliver(Result<std::pair<v1::AtlasMetadata, std::vector<u
   act(action);
 }
 
-void AtlasStreamState::finish(const grpc::Status& status) {
+template <typename Chunk>
+void ChunkStreamState<Chunk>::finish(const grpc::Status& status) {
   int action = kNothing;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -62,7 +65,8 @@ void AtlasStreamState::finish(const grpc::Status& status) {
   act(action);
 }
 
-void AtlasStreamState::write_done(bool ok) {
+template <typename Chunk>
+void ChunkStreamState<Chunk>::write_done(bool ok) {
   int action = kNothing;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -83,11 +87,13 @@ void AtlasStreamState::write_done(bool ok) {
   act(action);
 }
 
-void AtlasStreamState::cancelled() {
-  finish(grpc::Status(grpc::StatusCode::CANCELLED, "the dump was cancelled"));
+template <typename Chunk>
+void ChunkStreamState<Chunk>::cancelled() {
+  finish(grpc::Status(grpc::StatusCode::CANCELLED, "the download was cancelled"));
 }
 
-void AtlasStreamState::reactor_done() {
+template <typename Chunk>
+void ChunkStreamState<Chunk>::reactor_done() {
   std::lock_guard<std::mutex> lock(mutex_);
   reactor_ = nullptr;
   finished_ = true;
@@ -95,20 +101,28 @@ void AtlasStreamState::reactor_done() {
   bytes_.shrink_to_fit();
 }
 
-void AtlasStreamState::act(int action) {
+template <typename Chunk>
+void ChunkStreamState<Chunk>::act(int action) {
   // Without the lock: with a write in flight or Finish pending, OnDone cannot run yet.
   if (action == kWrite) reactor_->StartWrite(&chunk_);
   if (action == kFinish) reactor_->Finish(status_);
 }
 
-AtlasStreamReactor::AtlasStreamReactor(size_t chunk_bytes)
-    : state_(std::make_shared<AtlasStreamState>(chunk_bytes)) {
+template <typename Chunk>
+ChunkStreamReactor<Chunk>::ChunkStreamReactor(size_t chunk_bytes)
+    : state_(std::make_shared<ChunkStreamState<Chunk>>(chunk_bytes)) {
   state_->reactor_ = this;
 }
 
-void AtlasStreamReactor::OnDone() {
+template <typename Chunk>
+void ChunkStreamReactor<Chunk>::OnDone() {
   state_->reactor_done();
   delete this;
 }
+
+template class ChunkStreamState<v1::AtlasChunk>;
+template class ChunkStreamReactor<v1::AtlasChunk>;
+template class ChunkStreamState<v1::SceneChunk>;
+template class ChunkStreamReactor<v1::SceneChunk>;
 
 }  // namespace ddgi::service
