@@ -269,6 +269,8 @@ void dispatch(size_t method, const uint8_t* data, size_t size, uint8_t flags) {
       return unary(&Stub::QueryIrradiance, name, data, size, flags);
     case 20:
       return stream(&Stub::StreamProbes, name, data, size, flags);
+    case 21:
+      return stream(&Stub::ExportScene, name, data, size, flags);
   }
 }
 

@@ -12,7 +12,7 @@
 namespace ddgi::fuzz {
 
 // Every RPC of ddgi.v1.RenderService, in the order the input's first byte counts them.
-inline constexpr std::array<std::string_view, 21> kMethods = {
+inline constexpr std::array<std::string_view, 22> kMethods = {
     "GetServerInfo",  "CreateSession",
     "LoadScene",      "CloseSession",
     "ListSessions",   "GetSession",
@@ -23,7 +23,7 @@ inline constexpr std::array<std::string_view, 21> kMethods = {
     "GetFieldParams", "SetFieldParams",
     "RenderFrame",    "StreamFrames",
     "DumpAtlas",      "QueryIrradiance",
-    "StreamProbes"};
+    "StreamProbes",   "ExportScene"};
 
 enum InputFlag : uint8_t {
   kLiveSession = 1,  // session_id := the live session's

@@ -68,6 +68,8 @@ constexpr Seed kSeeds[] = {
   {"DumpAtlas", kLive, R"(kind: ATLAS_KIND_SH)"},
   {"StreamProbes", kLive, ""},
   {"StreamProbes", kLive, R"(change_threshold: 0.05 full_refresh_interval: 2)"},
+  {"ExportScene", kLive, ""},
+  {"ExportScene", 0, R"(session_id: "nope")"},
   {"QueryIrradiance", kLive, R"(points { position { y: 1 } normal { y: 1 } }
       points { position { x: 0.5 y: 0.2 } normal { x: -1 } to_viewer { z: 1 } })"},
 };
