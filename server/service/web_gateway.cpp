@@ -6,6 +6,7 @@
 
 #include "core/log.h"
 #include "service/web_connection.h"
+#include "service/web_scene_download.h"
 
 namespace ddgi::service {
 namespace {
@@ -62,6 +63,8 @@ Result<std::unique_ptr<WebGateway>> WebGateway::start(const WebOptions& options,
   mg_set_websocket_handler(gateway->civet_->context(), "/ws", &WebGateway::on_connect,
                            &WebGateway::on_ready, &WebGateway::on_data, &WebGateway::on_close,
                            gateway.get());
+  mg_set_request_handler(gateway->civet_->context(), "/scene.glb", &WebGateway::on_scene_request,
+                         gateway.get());
   LOG_INFO << "web front on port " << gateway->port() << ", files from " << options.root;
   return gateway;
 }
@@ -108,6 +111,10 @@ int WebGateway::on_data(mg_connection* connection, int bits, char* data, size_t 
     browser->handle_text(std::string_view(data, size));
   }
   return 1;
+}
+
+int WebGateway::on_scene_request(mg_connection* connection, void* self) {
+  return serve_scene_download(connection, *static_cast<WebGateway*>(self)->stub_);
 }
 
 void WebGateway::on_close(const mg_connection* connection, void* self) {

@@ -3,6 +3,7 @@
 // is a WebConnection whose calls go to the RenderService over an in-process channel with the
 // browser's token, so auth, limits, validation and RPC metrics are exactly the gRPC API's;
 // its frames come from StreamFrames through a latest-frame-wins slot (web_frame_stream.h).
+// GET /scene.glb?session=ID downloads a session's scene (web_scene_download.h).
 // No HTTP or WebSocket parsing is ours: civetweb does both.
 #pragma once
 
@@ -57,6 +58,7 @@ class WebGateway {
   static void on_ready(mg_connection* connection, void* self);
   static int on_data(mg_connection* connection, int bits, char* data, size_t size, void* self);
   static void on_close(const mg_connection* connection, void* self);
+  static int on_scene_request(mg_connection* connection, void* self);
 
   std::unique_ptr<v1::RenderService::Stub> stub_;
   Metrics& metrics_;
