@@ -1,8 +1,10 @@
 // The web client's page logic: connect (with a token when the server asks for one), pick a
 // scene or a running session, stream a view into the canvas, steer its camera with mouse and
 // keys, change a few field parameters and move a light; live frames/s, latency and bandwidth.
+// A second mode draws the scene here from streamed probes (local_mode.js).
 // window.ddgi exposes the page's state for the browser tests (tests/web/).
 import { CallError, DdgiSocket } from './socket.js';
+import { LocalMode } from './local_mode.js';
 import { OrbitCamera } from './camera.js';
 import { StreamStats } from './stats.js';
 
@@ -24,6 +26,8 @@ const state = {
   pendingJpeg: null,
   lightRange: 1, // the scene's default view distance: light sliders' span, WASD step
   lights: [],
+  token: '',
+  local: null, // LocalMode while the page renders itself
 };
 window.ddgi = state;
 
@@ -51,6 +55,7 @@ function openSocket() {
   state.socket = new DdgiSocket(`${scheme}://${location.host}/ws`, {
     onFrame: showFrame,
     onStreamEnded: (ended) => {
+      if (state.local) return; // the page stopped it to render itself
       setStatus(`stream ended: ${ended.code}${ended.message ? ` (${ended.message})` : ''}`);
       if (ended.code !== 'OK') showError(`The stream ended: ${ended.code}: ${ended.message}`);
       leaveView();
@@ -73,6 +78,7 @@ async function hello() {
     return;
   }
   if (token) sessionStorage.setItem(TOKEN_KEY, token);
+  state.token = token;
   $('auth').hidden = true;
   showError('');
   const info = state.serverInfo;
@@ -125,7 +131,8 @@ function frameSize() {
   };
 }
 
-async function startStream(session) {
+// `camera` (a Camera message) keeps the view where the page had it; absent: the scene's.
+async function startStream(session, camera = undefined) {
   state.session = session;
   state.camera = null;
   state.viewId = null;
@@ -134,6 +141,7 @@ async function startStream(session) {
   await state.socket.call('streamFrames', {
     sessionId: session.sessionId,
     settings: { ...frameSize(), viewMode: $('view-mode').value },
+    camera,
   });
   setStatus(`session ${session.sessionId.slice(0, 8)} on ${session.scene}`);
   $('choose').hidden = true;
@@ -152,8 +160,61 @@ function leaveView() {
 }
 
 async function leave() {
+  if (state.local) await leaveLocal();
   await state.socket.call('stopFrames', {});
   leaveView();
+  $('render-mode').value = 'server';
+}
+
+// ---- Local rendering ------------------------------------------------------------------------------
+
+function showCanvas(local) {
+  $('frame').hidden = local;
+  $('local').hidden = !local;
+  (local ? $('local') : $('frame')).focus();
+}
+
+async function enterLocal() {
+  if (!state.camera) throw new Error('wait for the first frame: it tells where the camera is');
+  const { width, height } = $('frame');
+  state.local = new LocalMode(state.socket, $('local'), {
+    onStatus: setStatus,
+    onError: (error) => showError(describe(error)),
+  });
+  await state.socket.call('stopFrames', {});
+  state.viewId = null;
+  showCanvas(true);
+  await state.local.start(state.session, state.token, state.camera, width, height,
+    $('view-mode').value === 'VIEW_MODE_INDIRECT');
+  setStatus(`local rendering of ${state.session.scene} (ready in ` +
+    `${(state.local.loadMs / 1000).toFixed(1)} s)`);
+}
+
+async function leaveLocal() {
+  const local = state.local;
+  state.local = null;
+  await local.stop();
+  showCanvas(false);
+}
+
+async function changeRenderMode() {
+  try {
+    if ($('render-mode').value === 'local') {
+      await enterLocal();
+    } else if (state.local) {
+      const camera = state.camera.toMessage();
+      await leaveLocal();
+      await startStream(state.session, camera);
+    }
+  } catch (error) {
+    showError(describe(error));
+    setStatus('local rendering failed');
+    if (state.local) {
+      await leaveLocal();
+      await startStream(state.session, state.camera?.toMessage()).catch(() => {});
+    }
+    $('render-mode').value = 'server';
+  }
 }
 
 // Frames: latest wins here too; a frame that comes while one decodes replaces the waiting one.
@@ -208,12 +269,15 @@ async function sendCamera() {
 }
 
 function cameraChanged() {
+  if (state.local) {
+    state.local.cameraChanged();
+    return;
+  }
   state.cameraDirty = true;
   sendCamera();
 }
 
-function bindMouse() {
-  const canvas = $('frame');
+function bindMouse(canvas) {
   let last = null;
   canvas.addEventListener('contextmenu', (event) => event.preventDefault());
   canvas.addEventListener('pointerdown', (event) => {
@@ -241,8 +305,8 @@ function bindMouse() {
 
 const KEYS = { w: [1, 0, 0], s: [-1, 0, 0], d: [0, 1, 0], a: [0, -1, 0], e: [0, 0, 1], q: [0, 0, -1] };
 
-function bindKeys() {
-  $('frame').addEventListener('keydown', (event) => {
+function bindKeys(canvas) {
+  canvas.addEventListener('keydown', (event) => {
     const move = KEYS[event.key.toLowerCase()];
     if (!move || !state.camera) return;
     const step = 0.05 * Math.max(state.lightRange, 1e-3);
@@ -286,6 +350,10 @@ async function applyField() {
 }
 
 async function changeViewMode() {
+  if (state.local) {
+    state.local.setIndirectOnly($('view-mode').value === 'VIEW_MODE_INDIRECT');
+    return;
+  }
   if (!state.viewId) return;
   try {
     await state.socket.call('updateView', {
@@ -358,6 +426,11 @@ function resized() {
 // ---- Start --------------------------------------------------------------------------------------
 
 function updateStats() {
+  if (state.local) {
+    $('fps').textContent = `${state.local.framesPerSecond()} (local)`;
+    $('latency').textContent = 'none (local)';
+    return;
+  }
   $('fps').textContent = state.stats.framesPerSecond().toFixed(0);
   $('bandwidth').textContent = `${(state.stats.bytesPerSecond() * 8 / 1e6).toFixed(1)} Mbit/s`;
   $('latency').textContent = state.stats.latencyMs === null ? '–'
@@ -374,8 +447,11 @@ function bindControls() {
   $('view-mode').addEventListener('change', changeViewMode);
   $('light').addEventListener('change', selectLight);
   for (const axis of ['x', 'y', 'z']) $(`light-${axis}`).addEventListener('input', moveLight);
-  bindMouse();
-  bindKeys();
+  $('render-mode').addEventListener('change', changeRenderMode);
+  for (const canvas of [$('frame'), $('local')]) {
+    bindMouse(canvas);
+    bindKeys(canvas);
+  }
   window.addEventListener('resize', resized);
   setInterval(updateStats, 250);
 }

@@ -13,7 +13,9 @@
 // pacing its sessions at 2 updates a second: the page follows an SH field with StreamProbes
 // (web/probe_stream.js) and shades from it with web/probes.js; at the same field update that
 // matches the server's QueryIrradiance to fp16 precision, and the stream's first message alone
-// (the control) does not.
+// (the control) does not. Local rendering: the page downloads the scene, draws the same view's
+// indirect light with three.js from the streamed probes, and that image matches the server's
+// frame of the view within a stated tolerance (the server's full image is the control).
 import { spawn } from 'node:child_process';
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -166,6 +168,61 @@ async function streamShowsAndDragMovesTheCamera(page) {
   }
 }
 
+// Mean absolute RGB difference (of 255) allowed between the page's own indirect image and the
+// server's frame of the same view: JPEG (quality 85, 4:2:0) and rasterized vs ray-traced edges.
+const LOCAL_TOLERANCE = 2.5;
+
+// The local canvas (WebGL, drawing buffer kept) as RGB values, like canvasPixels.
+async function localPixels(page) {
+  return page.evaluate(() => {
+    const local = document.getElementById('local');
+    const copy = document.createElement('canvas');
+    copy.width = local.width;
+    copy.height = local.height;
+    const context = copy.getContext('2d');
+    context.drawImage(local, 0, 0);
+    const data = context.getImageData(0, 0, copy.width, copy.height).data;
+    const rgb = [];
+    for (let i = 0; i < data.length; i += 4) rgb.push(data[i], data[i + 1], data[i + 2]);
+    return rgb;
+  });
+}
+
+async function localModeMatchesTheServersFrame(page) {
+  const full = await canvasPixels(page);
+  await page.select('#view-mode', 'VIEW_MODE_INDIRECT');
+  await waitForFrames(page, (await page.evaluate(() => window.ddgi.frames)) + 4, COMMAND_DEADLINE_MS);
+  const server = await canvasPixels(page);
+  await page.select('#render-mode', 'local');
+  await page.waitForFunction(() => window.ddgi.local?.view?.frames > 0
+    && window.ddgi.local.probes.messages >= 2, { timeout: COMMAND_DEADLINE_MS, polling: 100 })
+    .catch(async (error) => {
+      const shown = await page.evaluate(() => `${document.getElementById('status').textContent} / `
+        + `${document.getElementById('error').textContent}`);
+      throw new Error(`${error.message}; the page says: ${shown}`);
+    });
+  const info = await page.evaluate(() => ({
+    loadMs: window.ddgi.local.loadMs,
+    size: [document.getElementById('local').width, document.getElementById('local').height],
+    status: document.getElementById('status').textContent,
+  }));
+  const local = await localPixels(page);
+  const difference = meanAbsDifference(local, server);
+  const control = meanAbsDifference(local, full);
+  console.log(`local view ${info.size.join('x')}, ready in ${info.loadMs.toFixed(0)} ms: "${info.status}"`);
+  check(mean(local) > 5, `the local indirect image is lit (mean ${mean(local).toFixed(1)} of 255; the server's ${mean(server).toFixed(1)})`);
+  check(difference < LOCAL_TOLERANCE,
+    `the page's own indirect image matches the server's frame of the view: mean |diff| ${difference.toFixed(2)} (< ${LOCAL_TOLERANCE})`);
+  check(control > 4 * LOCAL_TOLERANCE,
+    `the server's full image does not (control: ${control.toFixed(2)})`);
+  if (process.env.DDGI_WEB_LOCAL_SCREENSHOT) {
+    await page.screenshot({ path: process.env.DDGI_WEB_LOCAL_SCREENSHOT });
+  }
+  await page.select('#render-mode', 'server');
+  await waitForFrames(page, (await page.evaluate(() => window.ddgi.frames)) + 2, COMMAND_DEADLINE_MS);
+  check(!(await page.evaluate(() => window.ddgi.local)), 'back to the server\'s frames');
+}
+
 // Tolerance of the page's streamed-field irradiance against the server's query: fp16 values
 // (4.9e-4 relative each), as ProbeStreamTest allows in C++.
 const STREAMED_TOLERANCE = 5e-3;
@@ -273,6 +330,7 @@ async function main() {
     await page.goto(url);
     await tokenIsAskedForAndChecked(page);
     await streamShowsAndDragMovesTheCamera(page);
+    await localModeMatchesTheServersFrame(page);
     if (failed) throw failed;
   } finally {
     await stopServer(server);
