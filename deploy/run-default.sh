@@ -33,6 +33,10 @@ port_file="$out/server.port"
 rm -f "$port_file"
 web_flags=()
 if [ "$web" = 1 ]; then
+  # three.js for the page's local-rendering mode, as pinned in web/package-lock.json.
+  if [ ! web/node_modules/.package-lock.json -nt web/package-lock.json ]; then
+    npm ci --prefix web --no-audit --no-fund || echo "npm ci failed: the page's local mode will say so" >&2
+  fi
   web_flags=(--web-port "${WEB_PORT:-8080}" --web-address "${WEB_ADDRESS:-127.0.0.1}")
 fi
 "$build/ddgi-server" --listen 127.0.0.1:0 --port-file "$port_file" --metrics-port -1 \

@@ -9,10 +9,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
-# The browser tests' npm packages, exactly as pinned in tests/web/package-lock.json.
-if [ ! tests/web/node_modules/.package-lock.json -nt tests/web/package-lock.json ]; then
-  npm ci --prefix tests/web --no-audit --no-fund
-fi
+# npm packages, exactly as pinned: the browser tests' (tests/web) and the web client's (web/).
+for dir in tests/web web; do
+  if [ ! $dir/node_modules/.package-lock.json -nt $dir/package-lock.json ]; then
+    npm ci --prefix $dir --no-audit --no-fund
+  fi
+done
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" --timeout 900
 if [ "${SANITIZERS:-1}" != 0 ]; then
