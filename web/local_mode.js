@@ -1,11 +1,12 @@
 // The page's local-rendering mode (docs/web.md): the server's frame stream stops, the scene is
 // downloaded once (progress shown), the field comes through StreamProbes, and every camera move
-// is drawn here at once (local_view.js). Lights moved by any client reach the page through the
-// probes (indirect) and a poll of the session's lights every second (direct). three.js is loaded
-// only when this mode starts, so the remote mode works without it.
+// is drawn here at once (local_view.js). Lights and objects moved by any client reach the page
+// through the probes (indirect) and a poll of the session every second (direct light, object
+// placement; a scene loaded meanwhile is downloaded again). three.js is loaded only when this
+// mode starts, so the remote mode works without it.
 import { applyProbeUpdate } from './probe_stream.js';
 
-const LIGHT_POLL_MS = 1000;
+const SESSION_POLL_MS = 1000;
 
 export class LocalMode {
   // socket: DdgiSocket; canvas: the WebGL canvas; onStatus(text) shows progress; onError(error).
@@ -36,14 +37,11 @@ export class LocalMode {
       throw new Error('local rendering needs three.js: run `npm ci --prefix web` on the server ' +
         `host (${error.message})`);
     }
-    const glb = await downloadScene(session.sessionId, token, (received, total) => {
-      const percent = total ? ` (${Math.round((100 * received) / total)}%)` : '';
-      this.onStatus(`downloading the scene: ${(received / 1e6).toFixed(1)} MB${percent}`);
-    });
-    this.onStatus('building the scene');
-    this.view = new LocalView(this.canvas);
-    await this.view.load(glb);
-    this.view.setIndirectOnly(indirectOnly);
+    this.token = token;
+    this.LocalView = LocalView;
+    this.downloadScene = downloadScene;
+    this.indirectOnly = indirectOnly;
+    await this.loadScene();
     this.socket.onProbeUpdate = (update) => this.probeUpdate(update);
     this.socket.onProbeStreamEnded = (ended) => {
       if (this.running && ended.code !== 'OK') this.onError(new Error(`probe stream: ${ended.code}: ${ended.message}`));
@@ -51,9 +49,21 @@ export class LocalMode {
     await this.socket.call('streamProbes', { sessionId: session.sessionId });
     this.loadMs = performance.now() - started;
     this.running = true;
-    this.pollLights();
+    this.pollSession();
     this.cameraChanged();
     requestAnimationFrame(() => this.draw());
+  }
+
+  async loadScene() {
+    const glb = await this.downloadScene(this.session.sessionId, this.token, (received, total) => {
+      const percent = total ? ` (${Math.round((100 * received) / total)}%)` : '';
+      this.onStatus(`downloading the scene: ${(received / 1e6).toFixed(1)} MB${percent}`);
+    });
+    this.onStatus('building the scene');
+    this.view ??= new this.LocalView(this.canvas);
+    await this.view.load(glb);
+    this.view.setIndirectOnly(this.indirectOnly);
+    this.cameraChanged();
   }
 
   probeUpdate(update) {
@@ -66,16 +76,25 @@ export class LocalMode {
     }
   }
 
-  async pollLights() {
+  // Follows what other clients change: lights, object placement, the scene itself.
+  async pollSession() {
+    let seen = this.session.commandSeq;
     while (this.running) {
       try {
         const info = await this.socket.call('getSession', { sessionId: this.session.sessionId });
-        for (const entry of info.lights ?? []) this.view.updateLight(Number(entry.lightId), entry.light);
-        this.dirty = true;
+        if (info.scene !== this.session.scene || info.triangles !== this.session.triangles) {
+          this.session = info;
+          await this.loadScene();
+        } else if (info.commandSeq !== seen) {
+          for (const entry of info.lights ?? []) this.view.updateLight(Number(entry.lightId), entry.light);
+          for (const instance of info.instances ?? []) this.view.updateInstance(instance);
+          this.dirty = true;
+        }
+        seen = info.commandSeq;
       } catch (error) {
         if (this.running) this.onError(error);
       }
-      await new Promise((resolve) => setTimeout(resolve, LIGHT_POLL_MS));
+      await new Promise((resolve) => setTimeout(resolve, SESSION_POLL_MS));
     }
   }
 
@@ -86,6 +105,7 @@ export class LocalMode {
   }
 
   setIndirectOnly(on) {
+    this.indirectOnly = on;
     this.view?.setIndirectOnly(on);
     this.dirty = true;
   }

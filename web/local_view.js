@@ -108,14 +108,17 @@ export class LocalView {
     this.probes = new ProbeUniforms();
     this.scene = null;
     this.materials = [];
-    this.lights = new Map(); // light id -> three light
+    this.lights = new Map(); // light id -> { light, node }
+    this.instances = new Map(); // instance index -> node
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.01, 100);
     this.frames = 0;
   }
 
-  // Builds the three.js scene from .glb bytes; `settings` are the view's (exposure, tonemap).
+  // Builds the three.js scene from .glb bytes (replacing one built before); `settings` are the
+  // view's (exposure, tonemap).
   async load(glb, settings = {}) {
     const gltf = await new GLTFLoader().parseAsync(glb, '');
+    this.disposeScene();
     this.scene = gltf.scene;
     this.scene.background = new THREE.Color(0, 0, 0);
     const tonemap = TONEMAPS[settings.tonemap] ?? TONEMAPS.TONEMAP_ACES;
@@ -123,6 +126,9 @@ export class LocalView {
     const bounds = new THREE.Box3().setFromObject(this.scene);
     this.size = bounds.getSize(new THREE.Vector3()).length() || 1;
     this.scene.traverse((object) => {
+      if (object.userData.ddgi_instance !== undefined) {
+        this.instances.set(Number(object.userData.ddgi_instance), object);
+      }
       if (object.isMesh) {
         object.material = probeMaterial(object.material, this.probes, tonemap);
         object.castShadow = true;
@@ -170,6 +176,14 @@ export class LocalView {
     if (message.intensity !== undefined) light.intensity = message.intensity;
   }
 
+  // An Instance as the API reports it: its column-major object-to-world matrix.
+  updateInstance(instance) {
+    const node = this.instances.get(Number(instance.index ?? 0));
+    const m = instance.transform?.m;
+    if (!node || m?.length !== 16) return;
+    new THREE.Matrix4().fromArray(m).decompose(node.position, node.quaternion, node.scale);
+  }
+
   setField(field) {
     this.probes.update(field);
   }
@@ -197,7 +211,22 @@ export class LocalView {
     this.frames += 1;
   }
 
+  disposeScene() {
+    this.scene?.traverse((object) => {
+      object.geometry?.dispose();
+      object.material?.map?.dispose();
+      object.material?.emissiveMap?.dispose();
+      object.material?.dispose();
+      object.shadow?.map?.dispose();
+    });
+    this.scene = null;
+    this.materials = [];
+    this.lights.clear();
+    this.instances.clear();
+  }
+
   dispose() {
+    this.disposeScene();
     this.renderer.dispose();
   }
 }

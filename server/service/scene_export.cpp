@@ -182,10 +182,13 @@ tinygltf::Light export_light(const Light& light) {
 
 void export_nodes(Builder& b, const Scene& scene, const std::vector<LightSlot>& lights) {
   tinygltf::Scene root;
-  for (const Instance& instance : scene.instances) {
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
     tinygltf::Node node;
     node.name = instance.name;
     node.mesh = instance.mesh;
+    node.extras =
+        tinygltf::Value(tinygltf::Value::Object{{"ddgi_instance", tinygltf::Value(int(i))}});
     node.matrix.assign(glm::value_ptr(instance.transform), glm::value_ptr(instance.transform) + 16);
     b.model.nodes.push_back(node);
     root.nodes.push_back(int(b.model.nodes.size() - 1));

@@ -86,6 +86,10 @@ v1::WebReply WebConnection::run(const v1::WebRequest& request) {
     case v1::WebRequest::kRemoveLight:
       status = forward(&Stub::RemoveLight, request.remove_light(), reply.mutable_light());
       break;
+    case v1::WebRequest::kSetInstanceTransform:
+      status = forward(&Stub::SetInstanceTransform, request.set_instance_transform(),
+                       reply.mutable_instance());
+      break;
     case v1::WebRequest::kGetFieldParams:
       status =
           forward(&Stub::GetFieldParams, request.get_field_params(), reply.mutable_field_params());

@@ -121,6 +121,7 @@ TEST_F(SceneExportTest, TheExportIsTheSessionsSceneAsItIsNow) {
   EXPECT_NEAR(exported.lights[1].outer_cone_angle, 30.0f * 3.14159265f / 180.0f, 1e-6f);
   // The ids clients know the lights by (0: the scene's, 1: the added one).
   EXPECT_NE(glb.find("\"ddgi_light_id\":1"), std::string::npos);
+  EXPECT_NE(glb.find("\"ddgi_instance\":6"), std::string::npos);
 
   v1::ExportSceneRequest unknown;
   unknown.set_session_id("no-such-session");

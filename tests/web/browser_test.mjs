@@ -188,6 +188,45 @@ async function localPixels(page) {
   });
 }
 
+async function waitForLocalFrames(page, count) {
+  await page.waitForFunction((n) => window.ddgi.local.view.frames >= n,
+    { timeout: COMMAND_DEADLINE_MS, polling: 50 }, count);
+}
+
+// In local mode, a second client (another WebSocket) moves an object: the page's scene follows
+// (its session poll) and its own full image changes, far more than it does meanwhile without.
+async function anotherClientMovesAnObject(page) {
+  await page.select('#view-mode', 'VIEW_MODE_FULL');
+  await waitForLocalFrames(page, (await page.evaluate(() => window.ddgi.local.view.frames)) + 2);
+  const still1 = await localPixels(page);
+  await new Promise((resolve) => setTimeout(resolve, 1500));
+  await waitForLocalFrames(page, (await page.evaluate(() => window.ddgi.local.view.frames)) + 1);
+  const still2 = await localPixels(page);
+  const moved = await page.evaluate(async (token) => {
+    const { DdgiSocket } = await import('/socket.js');
+    const other = new DdgiSocket(`${location.origin.replace(/^http/, 'ws')}/ws`,
+      { onFrame() {}, onStreamEnded() {}, onClose() {} });
+    await other.call('hello', { token });
+    const { sessionId } = window.ddgi.session;
+    const info = await other.call('getSession', { sessionId });
+    const instance = info.instances[info.instances.length - 1];
+    const m = instance.transform.m.slice();
+    m[12] += 0.3;
+    await other.call('setInstanceTransform', { sessionId, instanceIndex: instance.index ?? 0, transform: { m } });
+    other.close();
+    return { index: instance.index ?? 0, x: m[12] };
+  }, TOKEN);
+  await page.waitForFunction(({ index, x }) =>
+    Math.abs(window.ddgi.local.view.instances.get(index).position.x - x) < 1e-5,
+  { timeout: COMMAND_DEADLINE_MS, polling: 100 }, moved);
+  await waitForLocalFrames(page, (await page.evaluate(() => window.ddgi.local.view.frames)) + 2);
+  const after = await localPixels(page);
+  const stillChange = meanAbsDifference(still1, still2);
+  const change = meanAbsDifference(still2, after);
+  check(change > MIN_DRAG_CHANGE / 2 && change > 4 * stillChange,
+    `an object another client moved moves in the page's own image: mean |diff| ${change.toFixed(2)} (> ${MIN_DRAG_CHANGE / 2} and > 4x the ${stillChange.toFixed(2)} of 1.5 s without)`);
+}
+
 async function localModeMatchesTheServersFrame(page) {
   const full = await canvasPixels(page);
   await page.select('#view-mode', 'VIEW_MODE_INDIRECT');
@@ -215,6 +254,7 @@ async function localModeMatchesTheServersFrame(page) {
     `the page's own indirect image matches the server's frame of the view: mean |diff| ${difference.toFixed(2)} (< ${LOCAL_TOLERANCE})`);
   check(control > 4 * LOCAL_TOLERANCE,
     `the server's full image does not (control: ${control.toFixed(2)})`);
+  await anotherClientMovesAnObject(page);
   if (process.env.DDGI_WEB_LOCAL_SCREENSHOT) {
     await page.screenshot({ path: process.env.DDGI_WEB_LOCAL_SCREENSHOT });
   }
