@@ -188,6 +188,90 @@ async function localPixels(page) {
   });
 }
 
+// Largest relative difference allowed between the page's GLSL field query (web/probe_shader.js,
+// on the GPU through WebGL2) and web/probes.js (float32 arithmetic, equal to the server's query
+// to 2e-5 by clients_test): float rounding in a different order.
+const GLSL_TOLERANCE = 2e-5;
+
+// Evaluates the field `which` ('local': the local mode's streamed field; 'sh': window.shField)
+// at 256 random points inside its grid with the GLSL query (a 256x1 float render target) and
+// with probes.js. Returns { max, mean, control } (control: probes.js on the field with every
+// probe's first value doubled, i.e. what a wrong input would give).
+async function glslAgainstJs(page, which) {
+  return page.evaluate(async (which, count) => {
+    const THREE = await import('three');
+    const { PROBE_GLSL, ProbeUniforms } = await import('/probe_shader.js');
+    const { probeIrradiance } = await import('/probes.js');
+    const field = which === 'local' ? window.ddgi.local.probes.field : window.shField;
+    let seed = 11;
+    const random = () => { seed = (seed * 16807) % 2147483647; return seed / 2147483647; };
+    const data = new Float32Array(count * 2 * 4);
+    const points = [];
+    for (let i = 0; i < count; i += 1) {
+      const p = [0, 1, 2].map((a) => field.origin[a] + field.spacing[a] * (field.counts[a] - 1) * random());
+      const d = [random() - 0.5, random() - 0.5, random() - 0.5];
+      const length = Math.hypot(...d);
+      const n = d.map((v) => Math.fround(v / length));
+      points.push({ p: p.map(Math.fround), n });
+      data.set([...p, 1], i * 4);
+      data.set([...n, 1], (count + i) * 4);
+    }
+    const pointTexture = new THREE.DataTexture(data, count, 2, THREE.RGBAFormat, THREE.FloatType);
+    pointTexture.needsUpdate = true;
+    const probes = new ProbeUniforms();
+    probes.update(field);
+    const material = new THREE.RawShaderMaterial({
+      glslVersion: THREE.GLSL3,
+      uniforms: { ...probes.uniforms, ddgiPoints: { value: pointTexture } },
+      vertexShader: 'in vec3 position; void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }',
+      fragmentShader: `precision highp float; precision highp int;
+        uniform highp sampler2D ddgiPoints;
+        ${PROBE_GLSL}
+        out vec4 color;
+        void main() {
+          int i = int(gl_FragCoord.x);
+          vec3 p = texelFetch(ddgiPoints, ivec2(i, 0), 0).xyz;
+          vec3 n = texelFetch(ddgiPoints, ivec2(i, 1), 0).xyz;
+          color = vec4(ddgiProbeIrradiance(p, n, n), 1.0);
+        }`,
+    });
+    const scene = new THREE.Scene();
+    scene.add(new THREE.Mesh(new THREE.PlaneGeometry(2, 2), material));
+    const renderer = new THREE.WebGLRenderer({ canvas: document.createElement('canvas') });
+    const target = new THREE.WebGLRenderTarget(count, 1, { type: THREE.FloatType });
+    renderer.setRenderTarget(target);
+    renderer.render(scene, new THREE.Camera());
+    const out = new Float32Array(count * 4);
+    renderer.readRenderTargetPixels(target, 0, 0, count, 1, out);
+    renderer.dispose();
+    const wrong = structuredClone(field);
+    const values = field.basis === 'sh' ? wrong.sh : wrong.irradiance;
+    for (let i = 0; i < values.length; i += field.basis === 'sh' ? 27 : 4) values[i] *= 2;
+    let max = 0;
+    let control = 0;
+    let mean = 0;
+    points.forEach(({ p, n }, i) => {
+      const js = probeIrradiance(field, p, n);
+      const bad = probeIrradiance(wrong, p, n);
+      for (let c = 0; c < 3; c += 1) {
+        const scale = Math.max(js[c], 0.01);
+        max = Math.max(max, Math.abs(out[i * 4 + c] - js[c]) / scale);
+        control = Math.max(control, Math.abs(out[i * 4 + c] - bad[c]) / scale);
+        mean += js[c] / (3 * count);
+      }
+    });
+    return { max, mean, control };
+  }, which, 256);
+}
+
+function checkGlsl(result, what) {
+  check(result.mean > 0.01, `the ${what} field is lit (mean ${result.mean.toFixed(4)})`);
+  check(result.max < GLSL_TOLERANCE,
+    `the page's GLSL query on the ${what} field equals web/probes.js: max relative ${result.max.toExponential(2)} (< ${GLSL_TOLERANCE})`);
+  check(result.control > 100 * GLSL_TOLERANCE,
+    `and differs from it on a wrong field (control: ${result.control.toExponential(2)})`);
+}
+
 async function waitForLocalFrames(page, count) {
   await page.waitForFunction((n) => window.ddgi.local.view.frames >= n,
     { timeout: COMMAND_DEADLINE_MS, polling: 50 }, count);
@@ -246,6 +330,7 @@ async function localModeMatchesTheServersFrame(page) {
     status: document.getElementById('status').textContent,
   }));
   const local = await localPixels(page);
+  checkGlsl(await glslAgainstJs(page, 'local'), 'streamed octahedral');
   const difference = meanAbsDifference(local, server);
   const control = meanAbsDifference(local, full);
   console.log(`local view ${info.size.join('x')}, ready in ${info.loadMs.toFixed(0)} ms: "${info.status}"`);
@@ -299,6 +384,7 @@ async function probesStreamToThePage(page) {
     await socket.call('streamProbes', { sessionId: session.sessionId, changeThreshold: 1e-6 });
     await threeMessages;
     await socket.call('stopProbes', {});
+    window.shField = stream.field;
     // Points inside the grid, normals all around.
     const points = [];
     let seed = 7;
@@ -347,6 +433,7 @@ async function probesStreamToThePage(page) {
     `web/probes.js on the streamed SH field matches QueryIrradiance: max relative ${result.streamed.max.toExponential(2)} (< ${STREAMED_TOLERANCE})`);
   check(result.control.max > 10 * STREAMED_TOLERANCE,
     `the first message alone does not (control: ${result.control.max.toExponential(2)})`);
+  checkGlsl(await glslAgainstJs(page, 'sh'), 'streamed SH');
 }
 
 async function main() {
