@@ -427,8 +427,11 @@ function resized() {
 
 function updateStats() {
   if (state.local) {
-    $('fps').textContent = `${state.local.framesPerSecond()} (local)`;
-    $('latency').textContent = 'none (local)';
+    $('fps').textContent = `${state.local.framesPerSecond()} drawn here`;
+    $('latency').textContent = 'none (drawn here)';
+    $('bandwidth').textContent = `${(state.local.bytesPerSecond() * 8 / 1e6).toFixed(2)} Mbit/s of probes`;
+    $('gpu').textContent = '–';
+    $('dropped').textContent = '–';
     return;
   }
   $('fps').textContent = state.stats.framesPerSecond().toFixed(0);

@@ -21,6 +21,7 @@ export class LocalMode {
     this.running = false;
     this.loadMs = null;
     this.frameTimes = [];
+    this.probeMessages = []; // [time, bytes] of the last second's probe updates
   }
 
   // Starts on `session` at `camera` (an OrbitCamera) and `width` x `height` pixels.
@@ -42,7 +43,7 @@ export class LocalMode {
     this.downloadScene = downloadScene;
     this.indirectOnly = indirectOnly;
     await this.loadScene();
-    this.socket.onProbeUpdate = (update) => this.probeUpdate(update);
+    this.socket.onProbeUpdate = (update, bytes) => this.probeUpdate(update, bytes);
     this.socket.onProbeStreamEnded = (ended) => {
       if (this.running && ended.code !== 'OK') this.onError(new Error(`probe stream: ${ended.code}: ${ended.message}`));
     };
@@ -66,7 +67,10 @@ export class LocalMode {
     this.cameraChanged();
   }
 
-  probeUpdate(update) {
+  probeUpdate(update, bytes) {
+    const now = performance.now();
+    this.probeMessages.push([now, bytes]);
+    while (this.probeMessages[0][0] < now - 1000) this.probeMessages.shift();
     try {
       applyProbeUpdate(this.probes, update);
       this.view.setField(this.probes.field);
@@ -123,8 +127,14 @@ export class LocalMode {
     requestAnimationFrame(() => this.draw());
   }
 
+  // Frames drawn here over the last second (only when the camera, a light or the probes moved).
   framesPerSecond() {
     return this.frameTimes.length;
+  }
+
+  // The probe stream's bytes over the last second.
+  bytesPerSecond() {
+    return this.probeMessages.reduce((sum, [, bytes]) => sum + bytes, 0);
   }
 
   async stop() {

@@ -63,10 +63,10 @@ export class DdgiSocket {
     const reply = JSON.parse(data);
     const id = Number(reply.id);
     const waiting = this.pending.get(id);
-    // Probe updates (StreamProbes, docs/probe-stream.md) go to onProbeUpdate(update), set by
+    // Probe updates (StreamProbes, docs/probe-stream.md) go to onProbeUpdate(update, bytes), set by
     // whoever started the probe stream; its end to onProbeStreamEnded(status).
     if (reply.probeUpdate) {
-      if (id === this.probeStreamId) this.onProbeUpdate?.(reply.probeUpdate);
+      if (id === this.probeStreamId) this.onProbeUpdate?.(reply.probeUpdate, data.length);
       return;
     }
     const stopping = waiting && (waiting.name === 'stopFrames' || waiting.name === 'stopProbes');
