@@ -2,6 +2,8 @@
 // For every scene: a reference (full image, and the part the irradiance field must supply:
 // everything but punctual direct light), then for every field configuration a warmed-up DDGI
 // frame, compared with PSNR, SSIM and FLIP on the tone-mapped images. One markdown table.
+// With --dynamic: how many frames each configuration (and the path tracer restarted at the
+// change) needs after a light or an object moves (tools/dynamic_response.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +26,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/dynamic_response.h"
 #include "tools/pareto.h"
 #include "tools/reference_render.h"
 #include "tools/tool_support.h"
@@ -60,6 +63,17 @@ readbacks not included).
                         path tracer's at the same ms) and DIR/SCENE.svg (the plot); DIR must
                         exist
   --pt-max-spp N        the path tracer's largest sample count for --pareto      [64]
+  --dynamic CHANGE      instead of the table above: warm each configuration up, apply CHANGE
+                        (light:INDEX:dx,dy,dz or object:INDEX:dx,dy,dz), render
+                        --response-frames frames (one field update each) and score each
+                        frame's indirect view against the changed scene's field-part
+                        reference (relative L1 of linear radiance: the direct light follows
+                        at once, the field lags); the path tracer restarted at the change (1
+                        spp per frame, same part) is the baseline. Prints per method its
+                        steady error (the configuration warmed up on the changed scene), the
+                        frames and GPU ms until the error stays within 10% of it (the path
+                        tracer: of the best configuration's); writes
+                        DIR/SCENE.response.svg and .csv with --pareto DIR
   --backend B           auto | query | pipeline                         [auto]
 )";
 
@@ -171,6 +185,8 @@ struct EvalJob {
   std::string out_dir;
   std::string pareto_dir;  // empty: no --pareto
   uint32_t pt_max_spp = 64;
+  std::string dynamic;  // empty: no --dynamic
+  int64_t response_frames = 120;
 };
 
 Result<EvalJob> parse_job(const Flags& flags) {
@@ -189,7 +205,25 @@ Result<EvalJob> parse_job(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(const int64_t pt_max_spp, flags.get_int("pt-max-spp", 64, 1, 65536));
   job.pt_max_spp = static_cast<uint32_t>(pt_max_spp);
   job.field_assignments = flags.get_all("field");
+  DDGI_ASSIGN_OR_RETURN(job.dynamic, flags.get_string("dynamic", ""));
+  DDGI_ASSIGN_OR_RETURN(job.response_frames, flags.get_int("response-frames", 120, 5, 100000));
   return job;
+}
+
+// --field's assignments, then the configuration's own.
+std::vector<std::string> config_assignments(const EvalJob& job, const Config& config) {
+  std::vector<std::string> assignments = job.field_assignments;
+  assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
+  return assignments;
+}
+
+Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
+                                              const Scene& scene, const Config& config) {
+  DDGI_ASSIGN_OR_RETURN(
+      const GiStackOptions options,
+      fitted_gi_options(scene, true, DirectMode::kTracedShadows, config_assignments(job, config),
+                        {}, context.default_backend()));
+  return GiStack::create(context, scene, options);
 }
 
 Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
@@ -213,12 +247,7 @@ Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, 
 Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& job,
                                            const Scene& scene, const std::string& stem,
                                            const ReferencePair& refs, const Config& config) {
-  std::vector<std::string> assignments = job.field_assignments;
-  assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
-  DDGI_ASSIGN_OR_RETURN(const GiStackOptions options,
-                        fitted_gi_options(scene, true, DirectMode::kTracedShadows, assignments, {},
-                                          context.default_backend()));
-  DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
+  DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, config));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
@@ -252,7 +281,7 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   }
   settings.read_radiance = true;
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
-  tools::ConfigPoint point{config.name, assignments};
+  tools::ConfigPoint point{config.name, config_assignments(job, config)};
   DDGI_ASSIGN_OR_RETURN(point.full, score(refs.full.ldr, refs.full.radiance, full.ldr,
                                           full.radiance, job.width, job.height));
   DDGI_ASSIGN_OR_RETURN(point.indirect, score(refs.second.ldr, refs.second.radiance, indirect.ldr,
@@ -307,6 +336,130 @@ Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context
   return curve;
 }
 
+// A field of `config` warmed up on `scene` and its renderer, drawing the indirect view (the
+// field's part: the direct light follows a change at once) of the references' camera.
+struct WarmField {
+  std::unique_ptr<GiStack> gi;
+  std::unique_ptr<Renderer> renderer;
+  FrameSettings settings;
+
+  // One frame with one field update: its error against `refs`' field part, and its GPU ms.
+  Result<std::pair<double, double>> frame(const ReferencePair& refs) {
+    DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(settings.direct_mode, {}));
+    DDGI_ASSIGN_OR_RETURN(const FrameResult result, renderer->render(settings, update));
+    tools::PassTable table;
+    table.add(result.pass_times);
+    return std::make_pair(tools::relative_l1(result.radiance, refs.second.radiance),
+                          table.group_median(vk::PassGroup::kIrradianceField) +
+                              table.group_median(vk::PassGroup::kFrame));
+  }
+};
+
+Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Scene& scene,
+                             const ReferencePair& refs, const Config& config) {
+  WarmField w;
+  DDGI_ASSIGN_OR_RETURN(w.gi, make_gi_stack(context, job, scene, config));
+  DDGI_ASSIGN_OR_RETURN(w.renderer, Renderer::create(context, w.gi->scene(), w.gi->field(),
+                                                     context.default_backend()));
+  DDGI_TRY(w.gi->warm_up(static_cast<uint32_t>(job.warmup)));
+  w.settings.width = job.width;
+  w.settings.height = job.height;
+  w.settings.camera = refs.settings.camera;
+  w.settings.exposure = refs.exposure;
+  w.settings.view = View::kIndirect;
+  return w;
+}
+
+// --dynamic: a field warmed up on `scene`, then `change` applied and one frame (with one field
+// update) after another scored against the changed scene's reference; its steady error is that
+// of the same configuration warmed up on the changed scene.
+Result<tools::ResponseCurve> field_response(vk::Context& context, const EvalJob& job,
+                                            const Scene& scene, const Scene& changed,
+                                            const tools::SceneChange& change,
+                                            const ReferencePair& refs, const Config& config) {
+  tools::ResponseCurve curve{config.name, {}, {}};
+  {
+    DDGI_ASSIGN_OR_RETURN(WarmField converged, warm_field(context, job, changed, refs, config));
+    DDGI_ASSIGN_OR_RETURN(const auto frame, converged.frame(refs));
+    curve.steady = frame.first;
+  }
+  DDGI_ASSIGN_OR_RETURN(WarmField w, warm_field(context, job, scene, refs, config));
+  if (change.kind == tools::SceneChange::Kind::kLight) {
+    DDGI_TRY(w.gi->scene().set_lights(changed.lights));
+  } else {
+    DDGI_TRY(w.gi->scene().set_instance_transform(change.index,
+                                                  changed.instances[change.index].transform));
+  }
+  for (int64_t f = 0; f < job.response_frames; ++f) {
+    DDGI_ASSIGN_OR_RETURN(const auto frame, w.frame(refs));
+    curve.error.push_back(frame.first);
+    curve.ms.push_back(frame.second);
+  }
+  return curve;
+}
+
+// The baseline: the path tracer on the changed scene, restarted at the change, one sample per
+// pixel per frame.
+Result<tools::ResponseCurve> path_trace_response(vk::Context& context, const EvalJob& job,
+                                                 const Scene& changed, const ReferencePair& refs) {
+  DDGI_ASSIGN_OR_RETURN(auto gpu, GpuScene::create(context, changed));
+  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu, context.default_backend()));
+  PathTraceSettings settings = refs.settings;
+  settings.view = PathTraceView::kFieldIndirect;
+  tools::ResponseCurve curve{"path tracing, 1 spp per frame", {}, {}};
+  for (int64_t f = 0; f < job.response_frames; ++f) {
+    DDGI_TRY(tracer->accumulate(settings, 1));
+    DDGI_ASSIGN_OR_RETURN(const PathTraceImage image, tracer->read(Tonemap::kAces, refs.exposure));
+    curve.error.push_back(tools::relative_l1(image.radiance, refs.second.radiance));
+    curve.ms.push_back(tracer->last_accumulate_ms());
+  }
+  return curve;
+}
+
+// The path tracer (last) is measured against the best configuration's steady error.
+void print_response(const std::string& stem, const std::vector<tools::ResponseCurve>& curves) {
+  double best = 1e300;
+  for (size_t i = 0; i + 1 < curves.size(); ++i) best = std::min(best, curves[i].steady);
+  for (size_t i = 0; i < curves.size(); ++i) {
+    const tools::ResponseCurve& c = curves[i];
+    const double target = i + 1 == curves.size() ? best : c.steady;
+    const int64_t frames = c.frames_until_within(target);
+    std::printf("| %s | %s | %.4f | %.4f | %s | %s |\n", stem.c_str(), c.name.c_str(),
+                c.error.front(), target,
+                frames < 0 ? "never" : std::to_string(frames).c_str(),
+                frames < 0 ? "-" : std::to_string(c.ms_until(frames)).substr(0, 7).c_str());
+  }
+  std::fflush(stdout);
+}
+
+Status run_dynamic(vk::Context& context, const EvalJob& job,
+                   const std::vector<std::string>& scene_paths) {
+  std::printf(
+      "| scene | method | error, first frame | steady error (path tracing: the best "
+      "configuration's) | frames until within 10%% | GPU ms until then |\n|---|---|---|---|---|---|\n");
+  for (const std::string& scene_path : scene_paths) {
+    DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
+    DDGI_ASSIGN_OR_RETURN(const tools::SceneChange change,
+                          tools::parse_scene_change(job.dynamic, scene));
+    const Scene changed = tools::changed_scene(scene, change);
+    const std::string stem = tools::file_stem(scene_path);
+    DDGI_ASSIGN_OR_RETURN(const ReferencePair refs,
+                          make_references(context, job, changed, stem + ".changed"));
+    std::vector<tools::ResponseCurve> curves;
+    for (const Config& config : job.configs) {
+      DDGI_ASSIGN_OR_RETURN(tools::ResponseCurve curve,
+                            field_response(context, job, scene, changed, change, refs, config));
+      curves.push_back(std::move(curve));
+    }
+    DDGI_ASSIGN_OR_RETURN(tools::ResponseCurve traced,
+                          path_trace_response(context, job, changed, refs));
+    curves.push_back(std::move(traced));
+    print_response(stem, curves);
+    if (!job.pareto_dir.empty()) DDGI_TRY(tools::write_response_files(job.pareto_dir, stem, curves));
+  }
+  return ok_status();
+}
+
 // After the table: per scene, each front point against the path tracer: its FLIP at the same
 // ms, and the ms it needs for the same FLIP ("-": outside the traced spp range).
 void print_fronts(const std::vector<tools::SceneTrade>& trades) {
@@ -336,7 +489,8 @@ Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
       Flags flags, Flags::parse(argc, argv,
                                 {"width", "height", "spp", "warmup", "frames", "configs", "field",
-                                 "out-dir", "backend", "pareto", "pt-max-spp"},
+                                 "out-dir", "backend", "pareto", "pt-max-spp", "dynamic",
+                                 "response-frames"},
                                 {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
@@ -349,6 +503,7 @@ Status run(int argc, char** argv) {
               context->caps().device_name.c_str(), vk::backend_name(context->default_backend()),
               job.width, job.height, static_cast<long long>(job.spp),
               static_cast<long long>(job.warmup));
+  if (!job.dynamic.empty()) return run_dynamic(*context, job, flags.positional());
   std::printf(
       "| scene | configuration | probes traced / sleeping / off | full: PSNR | SSIM | FLIP | "
       "mean/ref | indirect: PSNR | SSIM | FLIP | mean/ref | field ms | frame ms |\n"
