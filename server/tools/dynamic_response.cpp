@@ -30,8 +30,10 @@ Result<SceneChange> parse_scene_change(const std::string& text, const Scene& sce
   const size_t count =
       change.kind == SceneChange::Kind::kLight ? scene.lights.size() : scene.instances.size();
   if (!(index >= 0.0 && index < double(count)) || index != std::floor(index)) {
-    return invalid_argument("--dynamic: the scene has " + std::to_string(count) + " " + kind +
-                            (kind == "light" ? "s" : " instances") + "; index " +
+    const std::string things = kind == "light" ? (count == 1 ? "light" : "lights")
+                                               : (count == 1 ? "object instance" : "object instances");
+    return invalid_argument("--dynamic: the scene has " + std::to_string(count) + " " + things +
+                            "; index " +
                             text.substr(first + 1, second - first - 1) + " is not one of them");
   }
   change.index = size_t(index);
@@ -46,6 +48,18 @@ Result<SceneChange> parse_scene_change(const std::string& text, const Scene& sce
   }
   if (axis != 3) return invalid_argument(usage + ": three offsets (got '" + text + "')");
   return change;
+}
+
+std::string describe(const Scene& scene, const SceneChange& change) {
+  char text[256];
+  const glm::vec3 extent = scene.world_bounds().extent();
+  const bool light = change.kind == SceneChange::Kind::kLight;
+  const std::string name =
+      light ? scene.lights[change.index].name : scene.instances[change.index].name;
+  std::snprintf(text, sizeof(text), "%s %zu '%s' moved by (%g, %g, %g); the scene spans (%.3g, %.3g, %.3g)",
+                light ? "light" : "object", change.index, name.c_str(), change.offset.x,
+                change.offset.y, change.offset.z, extent.x, extent.y, extent.z);
+  return text;
 }
 
 Scene changed_scene(const Scene& scene, const SceneChange& change) {
@@ -68,10 +82,13 @@ double relative_l1(const std::vector<float>& test, const std::vector<float>& ref
   return total > 0.0 ? difference / total : 0.0;
 }
 
-int64_t ResponseCurve::frames_until_within(double target, double factor) const {
+int64_t ResponseCurve::frames_until_within(double target, double factor, size_t window) const {
+  window = std::clamp<size_t>(window, 1, std::max<size_t>(error.size(), 1));
   int64_t first = -1;
-  for (int64_t f = int64_t(error.size()) - 1; f >= 0; --f) {
-    if (error[size_t(f)] > factor * target) break;
+  for (int64_t f = int64_t(error.size()) - int64_t(window); f >= 0; --f) {
+    double mean = 0.0;
+    for (size_t i = 0; i < window; ++i) mean += error[size_t(f) + i] / double(window);
+    if (mean > factor * target) break;
     first = f;
   }
   return first;

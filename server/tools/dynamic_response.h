@@ -27,6 +27,9 @@ struct SceneChange {
 // Parses a change and checks it against `scene` (the index exists, the offset is finite).
 Result<SceneChange> parse_scene_change(const std::string& text, const Scene& scene);
 
+// "object 6 'box' moved by (0, 0, 0.5); the scene spans (2, 2, 2)", for the output.
+std::string describe(const Scene& scene, const SceneChange& change);
+
 // `scene` with the change applied.
 Scene changed_scene(const Scene& scene, const SceneChange& change);
 
@@ -38,11 +41,12 @@ struct ResponseCurve {
   std::string name;
   std::vector<double> error;  // per frame after the change (relative L1)
   std::vector<double> ms;     // GPU ms per frame (field update + frame, or the path tracer's)
-  // Where the method settles: for a field, the error of the same configuration warmed up on the
-  // changed scene from the start (what it converges to); 0 for the path tracer.
+  // Where the method settles: for a field, the median error of the same configuration (on the
+  // same grid) warmed up on the changed scene from the start; 0 for the path tracer.
   double steady = 0.0;
-  // The first frame from which every later error is within `factor` x `target`; -1: never.
-  int64_t frames_until_within(double target, double factor = 1.1) const;
+  // The first frame from which the mean error of every later window of `window` frames is
+  // within `factor` x `target` (windows smooth the field's frame-to-frame noise); -1: never.
+  int64_t frames_until_within(double target, double factor = 1.1, size_t window = 10) const;
   // GPU ms summed over the frames before `frames` (the time to get there).
   double ms_until(int64_t frames) const;
 };

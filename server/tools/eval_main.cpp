@@ -72,7 +72,7 @@ readbacks not included).
                         spp per frame, same part) is the baseline. Prints per method its
                         steady error (the configuration warmed up on the changed scene), the
                         frames and GPU ms until the error stays within 10% of it (the path
-                        tracer: of the best configuration's); writes
+                        tracer: of the best configuration's), judged on 10-frame means; writes
                         DIR/SCENE.response.svg and .csv with --pareto DIR
   --backend B           auto | query | pipeline                         [auto]
 )";
@@ -217,11 +217,14 @@ std::vector<std::string> config_assignments(const EvalJob& job, const Config& co
   return assignments;
 }
 
+// A GI stack of `config` on `scene`, its grid fitted to `fitted` (the scene as loaded, so that a
+// moved object does not move the grid).
 Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
-                                              const Scene& scene, const Config& config) {
+                                              const Scene& fitted, const Scene& scene,
+                                              const Config& config) {
   DDGI_ASSIGN_OR_RETURN(
       const GiStackOptions options,
-      fitted_gi_options(scene, true, DirectMode::kTracedShadows, config_assignments(job, config),
+      fitted_gi_options(fitted, true, DirectMode::kTracedShadows, config_assignments(job, config),
                         {}, context.default_backend()));
   return GiStack::create(context, scene, options);
 }
@@ -247,7 +250,7 @@ Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, 
 Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& job,
                                            const Scene& scene, const std::string& stem,
                                            const ReferencePair& refs, const Config& config) {
-  DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, config));
+  DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, scene, config));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
@@ -355,10 +358,10 @@ struct WarmField {
   }
 };
 
-Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Scene& scene,
-                             const ReferencePair& refs, const Config& config) {
+Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Scene& fitted,
+                             const Scene& scene, const ReferencePair& refs, const Config& config) {
   WarmField w;
-  DDGI_ASSIGN_OR_RETURN(w.gi, make_gi_stack(context, job, scene, config));
+  DDGI_ASSIGN_OR_RETURN(w.gi, make_gi_stack(context, job, fitted, scene, config));
   DDGI_ASSIGN_OR_RETURN(w.renderer, Renderer::create(context, w.gi->scene(), w.gi->field(),
                                                      context.default_backend()));
   DDGI_TRY(w.gi->warm_up(static_cast<uint32_t>(job.warmup)));
@@ -371,19 +374,26 @@ Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Sce
 }
 
 // --dynamic: a field warmed up on `scene`, then `change` applied and one frame (with one field
-// update) after another scored against the changed scene's reference; its steady error is that
-// of the same configuration warmed up on the changed scene.
+// update) after another scored against the changed scene's reference; its steady error is the
+// median over kSteadyFrames of the same configuration warmed up on the changed scene.
 Result<tools::ResponseCurve> field_response(vk::Context& context, const EvalJob& job,
                                             const Scene& scene, const Scene& changed,
                                             const tools::SceneChange& change,
                                             const ReferencePair& refs, const Config& config) {
+  constexpr int kSteadyFrames = 11;
   tools::ResponseCurve curve{config.name, {}, {}};
   {
-    DDGI_ASSIGN_OR_RETURN(WarmField converged, warm_field(context, job, changed, refs, config));
-    DDGI_ASSIGN_OR_RETURN(const auto frame, converged.frame(refs));
-    curve.steady = frame.first;
+    DDGI_ASSIGN_OR_RETURN(WarmField converged,
+                          warm_field(context, job, scene, changed, refs, config));
+    std::vector<double> errors;
+    for (int f = 0; f < kSteadyFrames; ++f) {
+      DDGI_ASSIGN_OR_RETURN(const auto frame, converged.frame(refs));
+      errors.push_back(frame.first);
+    }
+    std::nth_element(errors.begin(), errors.begin() + kSteadyFrames / 2, errors.end());
+    curve.steady = errors[kSteadyFrames / 2];
   }
-  DDGI_ASSIGN_OR_RETURN(WarmField w, warm_field(context, job, scene, refs, config));
+  DDGI_ASSIGN_OR_RETURN(WarmField w, warm_field(context, job, scene, scene, refs, config));
   if (change.kind == tools::SceneChange::Kind::kLight) {
     DDGI_TRY(w.gi->scene().set_lights(changed.lights));
   } else {
@@ -443,6 +453,7 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
                           tools::parse_scene_change(job.dynamic, scene));
     const Scene changed = tools::changed_scene(scene, change);
     const std::string stem = tools::file_stem(scene_path);
+    std::fprintf(stderr, "%s: %s\n", stem.c_str(), tools::describe(scene, change).c_str());
     DDGI_ASSIGN_OR_RETURN(const ReferencePair refs,
                           make_references(context, job, changed, stem + ".changed"));
     std::vector<tools::ResponseCurve> curves;
