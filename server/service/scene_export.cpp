@@ -51,8 +51,8 @@ struct Builder {
 
   // POSITION needs its bounds (glTF 2.0, 3.6.2.4).
   int positions(const std::vector<glm::vec3>& values) {
-    const int index = accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                               kArrayBuffer);
+    const int index =
+        accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, kArrayBuffer);
     Bounds bounds;
     for (const glm::vec3& p : values) bounds.grow(p);
     model.accessors[size_t(index)].minValues = {bounds.min.x, bounds.min.y, bounds.min.z};
@@ -98,7 +98,7 @@ Status export_images(Builder& b, const Scene& scene) {
     auto bytes = png ? encode::encode_png(image) : encode::encode_jpeg(image, kJpegQuality);
     if (!bytes.ok()) {
       return internal_error("texture " + std::to_string(i) + " ('" + texture.name +
-                                   "'): " + bytes.error().message);
+                            "'): " + bytes.error().message);
     }
     tinygltf::Image out;
     out.name = texture.name;

@@ -22,8 +22,9 @@ struct ExportedScene {
 };
 
 // `scene` with the session's `lights` in place of its own. Nodes carry what the API calls them
-// by: extras.ddgi_instance (SetInstanceTransform's index), extras.ddgi_light_id. Base colour and emissive images go as JPEG (quality
-// 92) unless their alpha is used (mask or blend materials): PNG.
+// by: extras.ddgi_instance (SetInstanceTransform's index), extras.ddgi_light_id. Base colour and
+// emissive images go as JPEG (quality 92) unless their alpha is used (mask or blend materials):
+// PNG.
 Result<ExportedScene> export_glb(const Scene& scene, const std::vector<LightSlot>& lights);
 
 }  // namespace ddgi::service

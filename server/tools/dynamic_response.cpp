@@ -25,16 +25,17 @@ Result<SceneChange> parse_scene_change(const std::string& text, const Scene& sce
   } else {
     return invalid_argument(usage + " (got kind '" + kind + "')");
   }
-  DDGI_ASSIGN_OR_RETURN(const double index,
-                        parse_double(text.substr(first + 1, second - first - 1), "--dynamic index"));
+  DDGI_ASSIGN_OR_RETURN(const double index, parse_double(text.substr(first + 1, second - first - 1),
+                                                         "--dynamic index"));
   const size_t count =
       change.kind == SceneChange::Kind::kLight ? scene.lights.size() : scene.instances.size();
   if (!(index >= 0.0 && index < double(count)) || index != std::floor(index)) {
-    const std::string things = kind == "light" ? (count == 1 ? "light" : "lights")
-                                               : (count == 1 ? "object instance" : "object instances");
+    const std::string things = kind == "light"
+                                   ? (count == 1 ? "light" : "lights")
+                                   : (count == 1 ? "object instance" : "object instances");
     return invalid_argument("--dynamic: the scene has " + std::to_string(count) + " " + things +
-                            "; index " +
-                            text.substr(first + 1, second - first - 1) + " is not one of them");
+                            "; index " + text.substr(first + 1, second - first - 1) +
+                            " is not one of them");
   }
   change.index = size_t(index);
   std::istringstream offsets(text.substr(second + 1));
@@ -56,7 +57,8 @@ std::string describe(const Scene& scene, const SceneChange& change) {
   const bool light = change.kind == SceneChange::Kind::kLight;
   const std::string name =
       light ? scene.lights[change.index].name : scene.instances[change.index].name;
-  std::snprintf(text, sizeof(text), "%s %zu '%s' moved by (%g, %g, %g); the scene spans (%.3g, %.3g, %.3g)",
+  std::snprintf(text, sizeof(text),
+                "%s %zu '%s' moved by (%g, %g, %g); the scene spans (%.3g, %.3g, %.3g)",
                 light ? "light" : "object", change.index, name.c_str(), change.offset.x,
                 change.offset.y, change.offset.z, extent.x, extent.y, extent.z);
   return text;

@@ -220,8 +220,8 @@ std::vector<std::string> config_assignments(const EvalJob& job, const Config& co
 // A GI stack of `config` on `scene`, its grid fitted to `fitted` (the scene as loaded, so that a
 // moved object does not move the grid).
 Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
-                                              const Scene& fitted, const Scene& scene,
-                                              const Config& config) {
+                                               const Scene& fitted, const Scene& scene,
+                                               const Config& config) {
   DDGI_ASSIGN_OR_RETURN(
       const GiStackOptions options,
       fitted_gi_options(fitted, true, DirectMode::kTracedShadows, config_assignments(job, config),
@@ -435,8 +435,7 @@ void print_response(const std::string& stem, const std::vector<tools::ResponseCu
     const double target = i + 1 == curves.size() ? best : c.steady;
     const int64_t frames = c.frames_until_within(target);
     std::printf("| %s | %s | %.4f | %.4f | %s | %s |\n", stem.c_str(), c.name.c_str(),
-                c.error.front(), target,
-                frames < 0 ? "never" : std::to_string(frames).c_str(),
+                c.error.front(), target, frames < 0 ? "never" : std::to_string(frames).c_str(),
                 frames < 0 ? "-" : std::to_string(c.ms_until(frames)).substr(0, 7).c_str());
   }
   std::fflush(stdout);
@@ -446,7 +445,8 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
                    const std::vector<std::string>& scene_paths) {
   std::printf(
       "| scene | method | error, first frame | steady error (path tracing: the best "
-      "configuration's) | frames until within 10%% | GPU ms until then |\n|---|---|---|---|---|---|\n");
+      "configuration's) | frames until within 10%% | GPU ms until then "
+      "|\n|---|---|---|---|---|---|\n");
   for (const std::string& scene_path : scene_paths) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     DDGI_ASSIGN_OR_RETURN(const tools::SceneChange change,
@@ -466,7 +466,8 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
                           path_trace_response(context, job, changed, refs));
     curves.push_back(std::move(traced));
     print_response(stem, curves);
-    if (!job.pareto_dir.empty()) DDGI_TRY(tools::write_response_files(job.pareto_dir, stem, curves));
+    if (!job.pareto_dir.empty())
+      DDGI_TRY(tools::write_response_files(job.pareto_dir, stem, curves));
   }
   return ok_status();
 }
@@ -498,11 +499,11 @@ void print_fronts(const std::vector<tools::SceneTrade>& trades) {
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
-      Flags flags, Flags::parse(argc, argv,
-                                {"width", "height", "spp", "warmup", "frames", "configs", "field",
-                                 "out-dir", "backend", "pareto", "pt-max-spp", "dynamic",
-                                 "response-frames"},
-                                {"help"}));
+      Flags flags,
+      Flags::parse(argc, argv,
+                   {"width", "height", "spp", "warmup", "frames", "configs", "field", "out-dir",
+                    "backend", "pareto", "pt-max-spp", "dynamic", "response-frames"},
+                   {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");

@@ -29,7 +29,8 @@ TEST(DynamicResponse, SettlesAtTheFirstFrameFromWhichEveryLaterOneIsWithinTenPer
   // In means of two frames, (0.21 + 0.2) / 2 <= 0.22 from frame 3 on; (0.3 + 0.21) / 2 is not.
   EXPECT_EQ(curve.frames_until_within(0.2, 1.1, 2), 3);
   EXPECT_DOUBLE_EQ(curve.ms_until(6), 21.0);
-  EXPECT_DOUBLE_EQ(tools::relative_l1({1, 2, 3, 9, 2, 2, 2, 9}, {1, 2, 3, 0, 1, 2, 4, 0}), 3.0 / 13);
+  EXPECT_DOUBLE_EQ(tools::relative_l1({1, 2, 3, 9, 2, 2, 2, 9}, {1, 2, 3, 0, 1, 2, 4, 0}),
+                   3.0 / 13);
 }
 
 TEST(DynamicResponse, ChangesAreParsedAndBadOnesRefusedByWhatIsWrong) {
@@ -91,10 +92,10 @@ TEST(DynamicResponseCli, LowHysteresisSettlesSoonerAfterALightMove) {
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const Row slow = row(run.out, "slow"), fast = row(run.out, "fast");
   const Row traced = row(run.out, "path tracing, 1 spp per frame");
-  std::printf("settled after: slow %ld frames, fast %ld, path tracing %ld (to the best field's "
-              "%.3f); first-frame errors %.3f / %.3f / %.3f\n",
-              slow.frames, fast.frames, traced.frames, traced.steady, slow.first, fast.first,
-              traced.first);
+  std::printf(
+      "settled after: slow %ld frames, fast %ld, path tracing %ld (to the best field's "
+      "%.3f); first-frame errors %.3f / %.3f / %.3f\n",
+      slow.frames, fast.frames, traced.frames, traced.steady, slow.first, fast.first, traced.first);
   // Measured on lavapipe: slow 20, fast 0, path tracing 6 frames (10-frame means).
   EXPECT_GE(slow.frames, 10);
   EXPECT_GE(fast.frames, 0);

@@ -166,8 +166,8 @@ TEST(SceneExportImages, PngKeepsAlphaExactlyAndJpegStaysClose) {
   int worst = 0;
   for (size_t i = 0; i < scene.textures[1].rgba8.size(); ++i) {
     if (i % 4 == 3) continue;  // JPEG has no alpha
-    worst = std::max(worst, std::abs(int(loaded->textures[1].rgba8[i]) -
-                                     int(scene.textures[1].rgba8[i])));
+    worst = std::max(worst,
+                     std::abs(int(loaded->textures[1].rgba8[i]) - int(scene.textures[1].rgba8[i])));
   }
   std::printf("JPEG texture: largest channel error %d of 255 (bound 12)\n", worst);
   EXPECT_LE(worst, 12);
