@@ -83,36 +83,15 @@ Result<QueryParams> query_params(v1::RenderService::Stub& stub, const ContextFac
   return out;
 }
 
-}  // namespace
-
-grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& context,
-                         const v1::DumpAtlasRequest& request, v1::AtlasMetadata* metadata,
-                         std::string* bytes) {
-  const std::unique_ptr<grpc::ClientContext> call = context();
-  auto reader = stub.DumpAtlas(call.get(), request);
+// A whole download stream into `metadata` and `bytes`; `progress` (optional) after each chunk.
+template <typename Chunk, typename Metadata>
+grpc::Status collect_chunks(grpc::ClientContext& call, grpc::ClientReaderInterface<Chunk>& reader,
+                            Metadata* metadata, std::string* bytes,
+                            const std::function<void(uint64_t)>& progress) {
   bytes->clear();
-  return read_chunks<v1::AtlasChunk, v1::AtlasMetadata>(
-      *call, *reader,
-      [&](const v1::AtlasMetadata& m) {
-        *metadata = m;
-        bytes->reserve(size_t(std::min<uint64_t>(m.total_bytes(), 1ull << 32)));
-        return true;
-      },
-      [&](const std::string& data) {
-        *bytes += data;
-        return true;
-      });
-}
-
-grpc::Status fetch_scene(v1::RenderService::Stub& stub, const ContextFactory& context,
-                         const v1::ExportSceneRequest& request, v1::SceneMetadata* metadata,
-                         std::string* bytes, const std::function<void(uint64_t)>& progress) {
-  const std::unique_ptr<grpc::ClientContext> call = context();
-  auto reader = stub.ExportScene(call.get(), request);
-  bytes->clear();
-  return read_chunks<v1::SceneChunk, v1::SceneMetadata>(
-      *call, *reader,
-      [&](const v1::SceneMetadata& m) {
+  return read_chunks<Chunk, Metadata>(
+      call, reader,
+      [&](const Metadata& m) {
         *metadata = m;
         bytes->reserve(size_t(std::min<uint64_t>(m.total_bytes(), 1ull << 32)));
         return true;
@@ -122,6 +101,24 @@ grpc::Status fetch_scene(v1::RenderService::Stub& stub, const ContextFactory& co
         if (progress) progress(bytes->size());
         return true;
       });
+}
+
+}  // namespace
+
+grpc::Status fetch_atlas(v1::RenderService::Stub& stub, const ContextFactory& context,
+                         const v1::DumpAtlasRequest& request, v1::AtlasMetadata* metadata,
+                         std::string* bytes) {
+  const std::unique_ptr<grpc::ClientContext> call = context();
+  auto reader = stub.DumpAtlas(call.get(), request);
+  return collect_chunks(*call, *reader, metadata, bytes, {});
+}
+
+grpc::Status fetch_scene(v1::RenderService::Stub& stub, const ContextFactory& context,
+                         const v1::ExportSceneRequest& request, v1::SceneMetadata* metadata,
+                         std::string* bytes, const std::function<void(uint64_t)>& progress) {
+  const std::unique_ptr<grpc::ClientContext> call = context();
+  auto reader = stub.ExportScene(call.get(), request);
+  return collect_chunks(*call, *reader, metadata, bytes, progress);
 }
 
 Result<DownloadedField> download_probe_field(v1::RenderService::Stub& stub,
