@@ -584,7 +584,15 @@ grpc::ServerWriteReactor<v1::SceneChunk>* RenderServiceImpl::ExportScene(
   if (grpc::Status denied = auth_.check(*context); !denied.ok()) return fail(denied);
   auto session = sessions_.find(session_id);
   if (!session.ok()) return fail(to_grpc(session.error()));
+  // Each export holds a copy of its scene while it is written: a few at a time, server-wide.
+  if (scene_exports_.fetch_add(1) >= kMaxSceneExports) {
+    --scene_exports_;
+    return fail(to_grpc(resource_exhausted(
+        std::to_string(kMaxSceneExports) +
+        " scene exports are being written (the server's limit); try again shortly")));
+  }
   (*session)->export_scene([this, state, session_id](auto exported) {
+    --scene_exports_;
     record("ExportScene", session_id, exported.ok() ? grpc::Status::OK : to_grpc(exported.error()));
     state->deliver(std::move(exported));
   });

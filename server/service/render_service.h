@@ -3,6 +3,7 @@
 // there; the reply is sent by the session when the command has been applied. No handler waits.
 #pragma once
 
+#include <atomic>
 #include <mutex>
 #include <string>
 
@@ -119,6 +120,9 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
   Status refusal() const;
   mutable std::mutex refusal_mutex_;
   std::string refusal_;
+  // ExportScene calls whose file is being written (each holds a copy of its scene).
+  static constexpr int kMaxSceneExports = 2;
+  std::atomic<int> scene_exports_{0};
 };
 
 }  // namespace ddgi::service
