@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 
 #include "rpc/probe_download.h"
 #include "scene/gltf_loader.h"
@@ -130,6 +131,80 @@ TEST_F(SceneExportTest, TheExportIsTheSessionsSceneAsItIsNow) {
   const grpc::Status status = fetch_scene(
       *stub_, [this] { return context(); }, unknown, &metadata, &bytes);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND) << status.error_message();
+}
+
+// A scene whose export takes a while: two 2048x2048 textures behind masked materials (PNG).
+std::string slow_export_glb() {
+  Scene scene;
+  Mesh mesh;
+  Primitive triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  triangle.texcoords0 = {{0, 0}, {1, 0}, {0, 1}};
+  triangle.indices = {0, 1, 2};
+  for (int t = 0; t < 2; ++t) {
+    Texture texture{"big" + std::to_string(t), 2048, 2048, {}, true};
+    texture.rgba8.resize(size_t(2048) * 2048 * 4);
+    for (size_t i = 0; i < texture.rgba8.size(); ++i) texture.rgba8[i] = uint8_t((i * 7 + t) / 5);
+    scene.textures.push_back(texture);
+    Material material;
+    material.base_color_texture = t;
+    material.alpha_mode = AlphaMode::kMask;
+    scene.materials.push_back(material);
+    triangle.material = t;
+    mesh.primitives.push_back(triangle);
+  }
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back(Instance{"tri", 0, 0, glm::mat4(1.0f)});
+  scene.lights.push_back(Light{});
+  auto glb = service::export_glb(scene, {});
+  EXPECT_TRUE(glb.ok());
+  return glb.ok() ? std::string(glb->glb.begin(), glb->glb.end()) : "";
+}
+
+class SceneExportLimitTest : public SceneExportTest {
+ protected:
+  void configure(service::ServerOptions& options) override {
+    options.limits.max_upload_bytes = 64 << 20;
+    options.limits.max_message_bytes = 64 << 20;
+  }
+};
+
+// Eight clients ask for a slow export at once: two are written, the others are refused with
+// RESOURCE_EXHAUSTED naming the limit, and a later call succeeds again.
+TEST_F(SceneExportLimitTest, AtMostTwoExportsAreWrittenAtOnce) {
+  v1::CreateSessionRequest request = small_session_request("cornell_box", 1);
+  request.mutable_scene()->set_glb(slow_export_glb());
+  const std::string session = create_session(request).session_id();
+  ASSERT_FALSE(session.empty());
+  std::vector<grpc::Status> statuses(8);
+  std::vector<std::thread> clients;
+  for (size_t i = 0; i < statuses.size(); ++i) {
+    clients.emplace_back([&, i] {
+      v1::ExportSceneRequest call;
+      call.set_session_id(session);
+      v1::SceneMetadata metadata;
+      std::string bytes;
+      statuses[i] = fetch_scene(*stub_, [this] { return context(); }, call, &metadata, &bytes);
+    });
+  }
+  for (std::thread& client : clients) client.join();
+  int written = 0, refused = 0;
+  for (const grpc::Status& status : statuses) {
+    if (status.ok()) ++written;
+    if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      ++refused;
+      EXPECT_NE(status.error_message().find("2 scene exports are being written"),
+                std::string::npos)
+          << status.error_message();
+    }
+  }
+  std::printf("8 concurrent exports: %d written, %d refused\n", written, refused);
+  EXPECT_GE(written, 2);
+  EXPECT_GE(refused, 1);
+  EXPECT_EQ(written + refused, 8);
+  std::string glb;
+  EXPECT_EQ(export_session(session, &glb).textures.size(), 2u);  // the slots came back
 }
 
 // Images: a masked material's texture goes as PNG (alpha exact), an opaque one's as JPEG.
