@@ -115,8 +115,9 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
     for (const PlotPoint& p : series.points) {
       if (!usable(p)) continue;
       svg << "<circle cx=\"" << px(p.x) << "\" cy=\"" << py(p.y) << "\" r=\"4\" fill=\"" << colour
-          << "\"><title>" << escape(series.name + ": " + p.label) << "</title></circle>\n"
-          << "<text x=\"" << px(p.x) + 6 << "\" y=\"" << py(p.y) - 5 << "\" font-size=\"9\" fill=\""
+          << "\"><title>" << escape(series.name + ": " + p.label) << "</title></circle>\n";
+      if (p.label.empty()) continue;
+      svg << "<text x=\"" << px(p.x) + 6 << "\" y=\"" << py(p.y) - 5 << "\" font-size=\"9\" fill=\""
           << colour << "\">" << escape(p.label) << "</text>\n";
     }
   }
