@@ -185,7 +185,8 @@ TEST_F(SceneExportLimitTest, AtMostTwoExportsAreWrittenAtOnce) {
       call.set_session_id(session);
       v1::SceneMetadata metadata;
       std::string bytes;
-      statuses[i] = fetch_scene(*stub_, [this] { return context(); }, call, &metadata, &bytes);
+      statuses[i] = fetch_scene(
+          *stub_, [this] { return context(); }, call, &metadata, &bytes);
     });
   }
   for (std::thread& client : clients) client.join();
@@ -194,8 +195,7 @@ TEST_F(SceneExportLimitTest, AtMostTwoExportsAreWrittenAtOnce) {
     if (status.ok()) ++written;
     if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
       ++refused;
-      EXPECT_NE(status.error_message().find("2 scene exports are being written"),
-                std::string::npos)
+      EXPECT_NE(status.error_message().find("2 scene exports are being written"), std::string::npos)
           << status.error_message();
     }
   }
