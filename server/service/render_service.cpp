@@ -1,6 +1,8 @@
 #include "service/render_service.h"
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "core/log.h"
 #include "gi/field_params.h"
@@ -104,6 +106,14 @@ RenderServiceImpl::RenderServiceImpl(vk::Context& context, const ServiceLimits& 
       auth_(std::move(auth)),
       metrics_(metrics),
       sessions_(sessions) {}
+
+RenderServiceImpl::~RenderServiceImpl() {
+  // An export's thread touches this object until its last step, the count's decrement; exports
+  // take seconds at most, so this wait is short and bounded.
+  for (int i = 0; i < 6000 && scene_exports_.load() > 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
 
 void RenderServiceImpl::record(const char* method, const std::string& session_id,
                                const grpc::Status& status) {
@@ -592,9 +602,9 @@ grpc::ServerWriteReactor<v1::SceneChunk>* RenderServiceImpl::ExportScene(
         " scene exports are being written (the server's limit); try again shortly")));
   }
   (*session)->export_scene([this, state, session_id](auto exported) {
-    --scene_exports_;
     record("ExportScene", session_id, exported.ok() ? grpc::Status::OK : to_grpc(exported.error()));
     state->deliver(std::move(exported));
+    --scene_exports_;  // last: the destructor waits for this
   });
   return reactor;
 }

@@ -21,6 +21,8 @@ class RenderServiceImpl final : public v1::RenderService::CallbackService {
  public:
   RenderServiceImpl(vk::Context& context, const ServiceLimits& limits, SceneLibrary library,
                     BearerAuth auth, Metrics& metrics, SessionRegistry& sessions);
+  // Waits for scene exports still being written (their threads report back here).
+  ~RenderServiceImpl() override;
 
   // New sessions and streams are refused (UNAVAILABLE, with `why`) from now on: the server is
   // shutting down, or its GPU device was lost.
