@@ -2,26 +2,20 @@
 // session's scene (GET /scene.glb, ExportScene), rasterizes it with three.js (WebGL2), lights
 // it directly with the scene's punctual lights (shadow maps), and takes indirect diffuse light
 // from the probes StreamProbes sends (probe_shader.js: the server's query in GLSL). The camera
-// then moves with no network in the loop. Exposure, tone mapping (Narkowicz's ACES fit,
-// Reinhard or none) and sRGB encoding are the server's (shaders/render/tonemap.comp), so a view
-// here and the server's frame of the same view can be compared pixel for pixel.
+// then moves with no network in the loop. Exposure 1, tone mapping (Narkowicz's ACES fit) and
+// sRGB encoding are the server's defaults for a view (shaders/render/tonemap.comp; the page
+// never asks for others), so a view here and the server's frame of the same view can be
+// compared pixel for pixel.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { PROBE_GLSL, ProbeUniforms } from './probe_shader.js';
 
-const TONEMAPS = { TONEMAP_NONE: 0, TONEMAP_ACES: 1, TONEMAP_REINHARD: 2 };
-
-// three's CustomToneMapping hook, once per page: the server's curves after its exposure.
+// three's CustomToneMapping hook, once per page: the server's ACES fit after its exposure.
 THREE.ShaderChunk.tonemapping_pars_fragment = THREE.ShaderChunk.tonemapping_pars_fragment.replace(
   /vec3 CustomToneMapping\( vec3 color \) \{[^}]*\}/,
   `vec3 CustomToneMapping( vec3 color ) {
     color *= toneMappingExposure;
-  #if defined(DDGI_TONEMAP_ACES)
-    color = clamp((color * (2.51 * color + 0.03)) / (color * (2.43 * color + 0.59) + 0.14), 0.0, 1.0);
-  #elif defined(DDGI_TONEMAP_REINHARD)
-    color = color / (1.0 + color);
-  #endif
-    return color;
+    return clamp((color * (2.51 * color + 0.03)) / (color * (2.43 * color + 0.59) + 0.14), 0.0, 1.0);
   }`,
 );
 
@@ -58,7 +52,7 @@ export async function downloadScene(sessionId, token, onProgress) {
 
 // A Lambertian copy of a glTF material (the server's surfaces are Lambertian) whose indirect
 // light comes from the probes, and whose direct light and emission the indirect view drops.
-function probeMaterial(source, probes, tonemap) {
+function probeMaterial(source, probes) {
   const material = new THREE.MeshLambertMaterial({
     color: source.color,
     map: source.map,
@@ -71,8 +65,6 @@ function probeMaterial(source, probes, tonemap) {
     opacity: source.opacity,
     flatShading: source.flatShading,
   });
-  material.defines = tonemap === TONEMAPS.TONEMAP_ACES ? { DDGI_TONEMAP_ACES: '' }
-    : tonemap === TONEMAPS.TONEMAP_REINHARD ? { DDGI_TONEMAP_REINHARD: '' } : {};
   material.userData.indirectOnly = { value: false };
   material.onBeforeCompile = (shader) => {
     Object.assign(shader.uniforms, probes.uniforms, { ddgiIndirectOnly: material.userData.indirectOnly });
@@ -114,15 +106,13 @@ export class LocalView {
     this.frames = 0;
   }
 
-  // Builds the three.js scene from .glb bytes (replacing one built before); `settings` are the
-  // view's (exposure, tonemap).
-  async load(glb, settings = {}) {
+  // Builds the three.js scene from .glb bytes (replacing one built before).
+  async load(glb) {
     const gltf = await new GLTFLoader().parseAsync(glb, '');
     this.disposeScene();
     this.scene = gltf.scene;
     this.scene.background = new THREE.Color(0, 0, 0);
-    const tonemap = TONEMAPS[settings.tonemap] ?? TONEMAPS.TONEMAP_ACES;
-    this.renderer.toneMappingExposure = settings.exposure ?? 1;
+    this.renderer.toneMappingExposure = 1;
     const bounds = new THREE.Box3().setFromObject(this.scene);
     this.size = bounds.getSize(new THREE.Vector3()).length() || 1;
     this.scene.traverse((object) => {
@@ -130,7 +120,7 @@ export class LocalView {
         this.instances.set(Number(object.userData.ddgi_instance), object);
       }
       if (object.isMesh) {
-        object.material = probeMaterial(object.material, this.probes, tonemap);
+        object.material = probeMaterial(object.material, this.probes);
         object.castShadow = true;
         object.receiveShadow = true;
         this.materials.push(object.material);
