@@ -5,6 +5,7 @@
 
 #include "atlas_convert.h"
 #include "cli.h"
+#include "encode/file_io.h"
 #include "rpc/probe_download.h"
 
 namespace ddgi::client {
@@ -130,9 +131,11 @@ int export_scene(Cli& cli) {
       !status.ok()) {
     return report(status);
   }
-  std::ofstream file(out, std::ios::binary);
-  file.write(bytes.data(), std::streamsize(bytes.size()));
-  if (!file) return report(unavailable("cannot write " + out));
+  if (Status written = encode::write_file(
+          out, std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+      !written.ok()) {
+    return report(written.error());
+  }
   print_json(metadata);
   return 0;
 }
