@@ -20,6 +20,8 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
   static const ParamTable<P> table(
       "field parameter", "", grid_params<P>(kMaxCountPerAxis, kMaxProbes),
       {
+          param::flag("track_camera", &P::track_camera, param::BoolWords::kTrueFalse,
+                      "the grid scrolls with the camera in whole cells"),
           param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
                         "blended rays per probe per update"),
           param::number("fixed_rays", &P::fixed_rays, 0, 256,
@@ -94,6 +96,27 @@ DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams*
 
 uint64_t probe_count(const IrradianceFieldParams& p) {
   return grid_probe_count(p.counts);
+}
+
+uint32_t probe_slot(glm::ivec3 counts, glm::ivec3 scroll, glm::ivec3 coord) {
+  const glm::ivec3 s = (coord + scroll) % counts;
+  return uint32_t(s.x) + uint32_t(counts.x) * (uint32_t(s.y) + uint32_t(counts.y) * uint32_t(s.z));
+}
+
+glm::ivec3 probe_coord(glm::ivec3 counts, glm::ivec3 scroll, uint32_t slot) {
+  const glm::ivec3 s(int(slot % uint32_t(counts.x)),
+                     int(slot / uint32_t(counts.x) % uint32_t(counts.y)),
+                     int(slot / uint32_t(counts.x) / uint32_t(counts.y)));
+  return (s - scroll + counts) % counts;
+}
+
+glm::ivec3 tracking_scroll(const IrradianceFieldParams& p, glm::vec3 camera) {
+  const glm::vec3 centre = p.origin + 0.5f * p.spacing * glm::vec3(p.counts - 1);
+  const glm::vec3 cells = (camera - centre) / p.spacing;
+  if (glm::any(glm::isnan(cells)) || glm::any(glm::isinf(cells))) return glm::ivec3(0);
+  // Truncation: a cell or more away on an axis moves the grid; less never does.
+  const glm::vec3 limit(float(1 << 30));
+  return glm::ivec3(glm::clamp(glm::trunc(cells), -limit, limit));
 }
 
 Status validate(const IrradianceFieldParams& p) {

@@ -40,6 +40,11 @@ struct IrradianceFieldParams {
   glm::vec3 spacing{1.0f};
   // Probes per axis, each in [1, 512], total <= 4,194,304. Any count, not only powers of two.
   glm::ivec3 counts{4, 4, 4};
+  // Follow the camera (a tracking window, 2021 paper sec. 7.2; docs/cascades.md): when the
+  // camera is a cell or more from the grid's centre on an axis, the grid scrolls by whole
+  // cells so the camera is within a cell of the centre again; only the planes that enter are
+  // traced anew. Off by default: a grid fitted to the scene covers it all.
+  bool track_camera = false;
 
   // --- Tracing ------------------------------------------------------------------------------
   // Rays per probe per update that are shaded and blended, in [1, 1024]. 128 keeps noise low at
@@ -176,6 +181,17 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
 IrradianceFieldParams default_field_params(const Scene& scene);
 
 uint64_t probe_count(const IrradianceFieldParams& params);
+
+// A scrolling grid's addressing (FieldConstants::scroll, shaders/common/field.glsl): the slot
+// (index into the probe arrays and atlases) of the probe at grid coordinate `coord`, and the
+// grid coordinate of the probe in `slot`. `scroll`: each axis in [0, counts).
+uint32_t probe_slot(glm::ivec3 counts, glm::ivec3 scroll, glm::ivec3 coord);
+glm::ivec3 probe_coord(glm::ivec3 counts, glm::ivec3 scroll, uint32_t slot);
+
+// The whole cells a tracking grid scrolls so that `camera` is within a cell of its centre on
+// every axis; zero while it is (moves of less than a cell never scroll, so a camera moving
+// to and fro across a cell border does not make the grid flicker between two places).
+glm::ivec3 tracking_scroll(const IrradianceFieldParams& params, glm::vec3 camera);
 
 // The mode a shadow field is updated in when it serves a frame in `frame_mode` and the probe
 // rays of an irradiance field with `field` (null: no field, or not updated): the frame's when

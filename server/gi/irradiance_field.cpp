@@ -252,6 +252,9 @@ Status IrradianceField::set_update_path(FieldUpdatePath path) {
 
 Status IrradianceField::reset() {
   update_index_ = 0;
+  scroll_ = glm::ivec3(0);
+  unscrolled_origin_ = params_.origin;
+  scrolled_cells_ = glm::ivec3(0);
   const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
   std::vector<gpu::ProbeState> states(probes);
   for (gpu::ProbeState& s : states) s = {glm::vec3(0.0f), gpu::kProbeResetHistory};
@@ -348,15 +351,12 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
   if (!params_.classification) return ok_status();
 
   // The GPU's verdicts, then what only the CPU knows: probes near moving objects are Awake.
-  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_states());
+  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_slots());
   std::vector<uint8_t> verdicts = scheduler_.states();
   bool relabelled = false;
   for (uint32_t p : probes) {
     uint32_t state = (states[p].flags & gpu::kProbeStateMask) >> gpu::kProbeStateShift;
-    const glm::ivec3 c3(int(p % uint32_t(params_.counts.x)),
-                        int(p / uint32_t(params_.counts.x) % uint32_t(params_.counts.y)),
-                        int(p / uint32_t(params_.counts.x) / uint32_t(params_.counts.y)));
-    const glm::vec3 position = params_.origin + params_.spacing * glm::vec3(c3) + states[p].offset;
+    const glm::vec3 position = grid_point(p) + states[p].offset;
     for (const Bounds& region : dynamic_regions) {
       const bool inside = glm::all(glm::greaterThanEqual(position, region.min)) &&
                           glm::all(glm::lessThanEqual(position, region.max));
@@ -378,6 +378,93 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
   return vk::update_buffer(
       context_, probes_,
       {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])});
+}
+
+glm::vec3 IrradianceField::grid_point(uint32_t slot) const {
+  return params_.origin + params_.spacing * glm::vec3(probe_coord(params_.counts, scroll_, slot));
+}
+
+Status IrradianceField::scroll(glm::ivec3 cells) {
+  if (cells == glm::ivec3(0)) return ok_status();
+  scrolled_cells_ += cells;
+  params_.origin = unscrolled_origin_ + glm::vec3(scrolled_cells_) * params_.spacing;
+  // Nothing stays: a new field where the grid now is.
+  if (glm::any(glm::greaterThanEqual(glm::abs(cells), params_.counts))) return reset();
+  scroll_ = ((scroll_ + cells) % params_.counts + params_.counts) % params_.counts;
+  const std::vector<uint32_t> entering = entering_slots(cells);
+  DDGI_TRY(clear_probes(entering));
+  if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
+  return manage_probes(entering, params_.relocation_iterations > 0, {});
+}
+
+std::vector<uint32_t> IrradianceField::entering_slots(glm::ivec3 cells) const {
+  std::vector<uint32_t> slots;
+  const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
+  for (uint32_t p = 0; p < probes; ++p) {
+    const glm::ivec3 c = probe_coord(params_.counts, scroll_, p);
+    bool entered = false;
+    for (int axis = 0; axis < 3; ++axis) {
+      // A scroll by +k brings in the last k planes of the axis, by -k the first k.
+      entered = entered || (cells[axis] > 0 && c[axis] >= params_.counts[axis] - cells[axis]) ||
+                (cells[axis] < 0 && c[axis] < -cells[axis]);
+    }
+    if (entered) slots.push_back(p);
+  }
+  return slots;
+}
+
+Status IrradianceField::clear_probes(const std::vector<uint32_t>& slots) {
+  const uint32_t irradiance_tile = params_.irradiance_texels + 2 * gpu::kAtlasBorder;
+  const uint32_t distance_tile = params_.distance_texels + 2 * gpu::kAtlasBorder;
+  const VkDeviceSize tile_bytes =
+      std::max(irradiance_tile * irradiance_tile * 16u, distance_tile * distance_tile * 8u);
+  if (!zero_tile_ || zero_tile_.size() < tile_bytes) {
+    DDGI_ASSIGN_OR_RETURN(
+        zero_tile_,
+        vk::Buffer::create(context_, tile_bytes,
+                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUsage::kDeviceLocal, "zero map tile"));
+  }
+  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_slots());
+  for (uint32_t p : slots) states[p] = {glm::vec3(0.0f), gpu::kProbeResetHistory};
+  DDGI_TRY(vk::update_buffer(
+      context_, probes_,
+      {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
+  // One copy region per probe and map: the tiles of `slots` in each atlas.
+  auto tiles = [&](uint32_t tile) {
+    std::vector<VkBufferImageCopy> regions;
+    for (uint32_t p : slots) {
+      VkBufferImageCopy r{};
+      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      r.imageOffset = {int32_t(p % layout_.tiles_per_row * tile),
+                       int32_t(p / layout_.tiles_per_row * tile), 0};
+      r.imageExtent = {tile, tile, 1};
+      regions.push_back(r);
+    }
+    return regions;
+  };
+  const bool sh = params_.basis == ProbeBasis::kSh;
+  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  return context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+    vkCmdFillBuffer(cmd, zero_tile_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vk::barrier_all(cmd);
+    if (sh) {
+      for (uint32_t p : slots) {
+        vkCmdFillBuffer(cmd, sh_.handle(), VkDeviceSize(p) * sizeof(gpu::ShProbe),
+                        sizeof(gpu::ShProbe), 0);
+      }
+    } else if (!slots.empty()) {  // (copies need at least one region)
+      const std::vector<VkBufferImageCopy> irradiance = tiles(irradiance_tile);
+      const std::vector<VkBufferImageCopy> distance = tiles(distance_tile);
+      vkCmdCopyBufferToImage(cmd, zero_tile_.handle(), irradiance_.handle(),
+                             VK_IMAGE_LAYOUT_GENERAL, uint32_t(irradiance.size()),
+                             irradiance.data());
+      vkCmdCopyBufferToImage(cmd, zero_tile_.handle(), distance_.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                             uint32_t(distance.size()), distance.data());
+    }
+    vk::barrier_all(cmd);
+  });
 }
 
 Status IrradianceField::prepare() {
@@ -402,10 +489,7 @@ Status IrradianceField::prepare() {
       r.max += grow;
     }
     for (uint32_t p = 0; p < probes; ++p) {
-      const glm::ivec3 c3(int(p % uint32_t(params_.counts.x)),
-                          int(p / uint32_t(params_.counts.x) % uint32_t(params_.counts.y)),
-                          int(p / uint32_t(params_.counts.x) / uint32_t(params_.counts.y)));
-      const glm::vec3 grid = params_.origin + params_.spacing * glm::vec3(c3);
+      const glm::vec3 grid = grid_point(p);
       for (const Bounds& r : regions) {
         // The probe may sit up to the offset limit from its grid point.
         const glm::vec3 slack = params_.probe_offset_limit * params_.spacing;
@@ -422,11 +506,16 @@ Status IrradianceField::prepare() {
   return manage_probes(affected, false, regions);
 }
 
-Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
+Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_slots() {
   std::vector<gpu::ProbeState> states(probe_count(params_));
   DDGI_TRY(vk::download_buffer(context_, probes_, states.data(),
                                states.size() * sizeof(gpu::ProbeState)));
   return states;
+}
+
+Result<std::vector<gpu::ProbeState>> IrradianceField::read_probe_states() {
+  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_slots());
+  return in_grid_order(std::move(states));
 }
 
 Status IrradianceField::set_params(const IrradianceFieldParams& params) {
@@ -447,6 +536,7 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.origin = params_.origin;
   c.spacing = params_.spacing;
   c.counts = params_.counts;
+  c.scroll = scroll_;
   c.probe_count = static_cast<uint32_t>(probe_count(params_));
   c.rays_per_probe = params_.rays_per_probe;
   c.fixed_rays = params_.fixed_rays;
@@ -617,18 +707,54 @@ Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<Irradian
 }
 
 Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image& image,
-                                                                uint32_t channels) {
+                                                                uint32_t channels,
+                                                                uint32_t texels) {
   if (params_.basis != ProbeBasis::kOctahedral) {
     return failed_precondition("the field's probes are SH coefficients, not octahedral maps");
   }
-  AtlasImage atlas;
-  atlas.width = image.width();
-  atlas.height = image.height();
-  atlas.channels = channels;
-  atlas.texels.resize(size_t(atlas.width) * atlas.height * channels);
-  DDGI_TRY(vk::download_image(context_, image, atlas.texels.data(),
-                              atlas.texels.size() * sizeof(float)));
-  return atlas;
+  AtlasImage slots;
+  slots.width = image.width();
+  slots.height = image.height();
+  slots.channels = channels;
+  slots.texels.resize(size_t(slots.width) * slots.height * channels);
+  DDGI_TRY(vk::download_image(context_, image, slots.texels.data(),
+                              slots.texels.size() * sizeof(float)));
+  if (scroll_ == glm::ivec3(0)) return slots;
+  // Tile g of the result is the tile of the probe at grid index g.
+  AtlasImage grid = slots;
+  const uint32_t side = texels + 2 * gpu::kAtlasBorder;
+  const size_t row_values = size_t(side) * channels;
+  auto tile_start = [&](uint32_t tile) {
+    return (size_t(tile / layout_.tiles_per_row) * side * slots.width +
+            size_t(tile % layout_.tiles_per_row) * side) *
+           channels;
+  };
+  const std::vector<uint32_t> order = slots_in_grid_order();
+  for (uint32_t g = 0; g < order.size(); ++g) {
+    for (uint32_t y = 0; y < side; ++y) {
+      const size_t row = size_t(y) * slots.width * channels;
+      std::copy_n(slots.texels.begin() + tile_start(order[g]) + row, row_values,
+                  grid.texels.begin() + tile_start(g) + row);
+    }
+  }
+  return grid;
+}
+
+std::vector<uint32_t> IrradianceField::slots_in_grid_order() const {
+  std::vector<uint32_t> order(probe_count(params_));
+  for (uint32_t g = 0; g < order.size(); ++g) {
+    order[g] = probe_slot(params_.counts, scroll_, probe_coord(params_.counts, glm::ivec3(0), g));
+  }
+  return order;
+}
+
+template <typename T>
+std::vector<T> IrradianceField::in_grid_order(std::vector<T> per_slot) const {
+  if (scroll_ == glm::ivec3(0)) return per_slot;
+  const std::vector<uint32_t> order = slots_in_grid_order();
+  std::vector<T> per_probe(per_slot.size());
+  for (size_t g = 0; g < order.size(); ++g) per_probe[g] = per_slot[order[g]];
+  return per_probe;
 }
 
 std::vector<float> sh_coefficient_values(const std::vector<gpu::ShProbe>& probes) {
@@ -646,15 +772,15 @@ Result<std::vector<gpu::ShProbe>> IrradianceField::read_sh_probes() {
   }
   std::vector<gpu::ShProbe> probes(probe_count(params_));
   DDGI_TRY(vk::download_buffer(context_, sh_, probes.data(), probes.size() * sizeof(gpu::ShProbe)));
-  return probes;
+  return in_grid_order(std::move(probes));
 }
 
 Result<IrradianceField::AtlasImage> IrradianceField::read_irradiance_atlas() {
-  return read_atlas(irradiance_, 4);
+  return read_atlas(irradiance_, 4, params_.irradiance_texels);
 }
 
 Result<IrradianceField::AtlasImage> IrradianceField::read_distance_atlas() {
-  return read_atlas(distance_, 2);
+  return read_atlas(distance_, 2, params_.distance_texels);
 }
 
 }  // namespace ddgi

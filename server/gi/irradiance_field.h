@@ -59,6 +59,21 @@ class IrradianceField {
   // Drops all history: every probe starts over at its next update.
   Status reset();
 
+  // Moves the grid by `cells` whole cells (its origin by cells x spacing) as a 3D circular
+  // buffer (docs/cascades.md): probes whose world position stays keep their slot, maps and
+  // state bit for bit; the planes that leave are re-initialised on the other side (maps
+  // cleared, history reset, relocated and classified) and traced by the next update. A move of
+  // the whole grid or more starts the field over. Submits GPU work and rewrites the probe
+  // list: no frame or update that uses the field may be in flight.
+  Status scroll(glm::ivec3 cells);
+  // The circular buffer's phase (FieldConstants::scroll).
+  glm::ivec3 scroll_phase() const { return scroll_; }
+  // The scroll that brings a tracking field (track_camera) back around `camera`; zero for a
+  // field that does not track or needs no scroll.
+  glm::ivec3 tracking_scroll(glm::vec3 camera) const {
+    return params_.track_camera ? ddgi::tracking_scroll(params_, camera) : glm::ivec3(0);
+  }
+
   // Brings probe states up to date with moved geometry (reclassifies probes near moved
   // instances, waking sleeping ones). Call before recording updates; it submits GPU work.
   Status prepare();
@@ -96,6 +111,9 @@ class IrradianceField {
   // Field irradiance M (= E / pi) at arbitrary points.
   Result<std::vector<glm::vec3>> query(const std::vector<IrradianceQuery>& queries);
 
+  // The readers below give every probe's data in grid order (index x + counts.x * (y +
+  // counts.y * z) from the origin, atlas tile by tile), whatever slots a scrolling field keeps
+  // them in: what dumps, streams and clients index by.
   struct AtlasImage {
     uint32_t width = 0;
     uint32_t height = 0;
@@ -150,6 +168,13 @@ class IrradianceField {
   Status manage_probes(const std::vector<uint32_t>& probes, bool relocate,
                        const std::vector<Bounds>& dynamic_regions);
   Status write_probe_list(const std::vector<uint32_t>& probes);
+  // The grid point (no relocation offset) of the probe in `slot`.
+  glm::vec3 grid_point(uint32_t slot) const;
+  // Slots whose probes a scroll by `cells` brought in (with the new phase in scroll_).
+  std::vector<uint32_t> entering_slots(glm::ivec3 cells) const;
+  // Zero maps (or SH coefficients), zero offset, Vigilant with a history reset, for `slots`;
+  // and the constants (origin, phase) uploaded.
+  Status clear_probes(const std::vector<uint32_t>& slots);
   // One invocation per (probe, item) over `probes` entries of the probe list from `list_start`.
   struct LinearWork {
     uint32_t list_start = 0;
@@ -168,7 +193,14 @@ class IrradianceField {
   // The lighting passes of one update over `rays` (fused or split path).
   void add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
                            DirectMode direct_mode) const;
-  Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels);
+  // `texels`: the interior side of the atlas's maps.
+  Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels, uint32_t texels);
+  // The probe states as the GPU keeps them, slot by slot.
+  Result<std::vector<gpu::ProbeState>> read_probe_slots();
+  // The slot of the probe at each grid index, and per-slot data put in grid order.
+  std::vector<uint32_t> slots_in_grid_order() const;
+  template <typename T>
+  std::vector<T> in_grid_order(std::vector<T> per_slot) const;
 
   vk::Context& context_;
   GpuScene& scene_;
@@ -176,6 +208,11 @@ class IrradianceField {
   IrradianceFieldParams params_;
   AtlasLayout layout_;
   uint64_t update_index_ = 0;
+  glm::ivec3 scroll_{0};  // FieldConstants::scroll
+  // Where the grid was at the last reset and the cells it scrolled since: the origin is
+  // recomputed from them, so that many scrolls do not accumulate rounding.
+  glm::vec3 unscrolled_origin_{0.0f};
+  glm::ivec3 scrolled_cells_{0};
   float hysteresis_cap_ = 1.0f;  // warm_up() lowers the hysteresis below this for a while
   uint64_t gpu_bytes_ = 0;
 
@@ -210,7 +247,8 @@ class IrradianceField {
   uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
-  vk::Buffer sh_;  // ShProbe per probe of an SH field, one otherwise
+  vk::Buffer sh_;         // ShProbe per probe of an SH field, one otherwise
+  vk::Buffer zero_tile_;  // zeros the size of a map tile: what clear_probes() copies
 };
 
 }  // namespace ddgi

@@ -22,15 +22,20 @@ layout(set = kFieldSet, binding = kFieldBindingSh, scalar) buffer ShProbes {
   ShProbe sh_probes[];
 };
 
-// --- Probe addressing: p = x + counts.x * (y + counts.y * z) -----------------------------
+// --- Probe addressing ---------------------------------------------------------------------
+// Probe p is the slot p = x + counts.x * (y + counts.y * z) of the probe arrays and atlases.
+// The slot of the probe at grid coordinate c is c shifted by the scroll phase, per axis modulo
+// the count (field_data.h): a scrolling field moves whole planes without moving their data.
 ivec3 probe_grid_coord(uint p) {
   const uint x = p % uint(field.counts.x);
   const uint yz = p / uint(field.counts.x);
-  return ivec3(int(x), int(yz % uint(field.counts.y)), int(yz / uint(field.counts.y)));
+  const ivec3 slot = ivec3(int(x), int(yz % uint(field.counts.y)), int(yz / uint(field.counts.y)));
+  return (slot - field.scroll + field.counts) % field.counts;
 }
 
 uint probe_index(ivec3 c) {
-  return uint(c.x) + uint(field.counts.x) * (uint(c.y) + uint(field.counts.y) * uint(c.z));
+  const ivec3 slot = (c + field.scroll) % field.counts;
+  return uint(slot.x) + uint(field.counts.x) * (uint(slot.y) + uint(field.counts.y) * uint(slot.z));
 }
 
 uint probe_state(uint p) {

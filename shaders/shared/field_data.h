@@ -119,9 +119,10 @@ struct FieldConstants {
   float sh_band1;                 // SH fields: A_1 / pi x window of band 1 (shaders/common/sh.glsl)
   float sh_band2;                 // the same for band 2
   uint probe_bounces;             // > 0: probe-ray hits trace paths this long, not the field
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  // The grid as a 3D circular buffer (a scrolling field, docs/cascades.md): the probe at grid
+  // coordinate c (from origin) lives in the slot of coordinate (c + scroll) mod counts, each
+  // axis in [0, counts). Zero for a field that never scrolled.
+  ivec3 scroll;
 };
 
 // What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
@@ -218,9 +219,7 @@ static_assert(offsetof(FieldConstants, basis) == 212);
 static_assert(offsetof(FieldConstants, sh_band1) == 216);
 static_assert(offsetof(FieldConstants, sh_band2) == 220);
 static_assert(offsetof(FieldConstants, probe_bounces) == 224);
-static_assert(offsetof(FieldConstants, pad0) == 228);
-static_assert(offsetof(FieldConstants, pad1) == 232);
-static_assert(offsetof(FieldConstants, pad2) == 236);
+static_assert(offsetof(FieldConstants, scroll) == 228);
 
 static_assert(sizeof(FieldDispatch) == 32);
 static_assert(offsetof(FieldDispatch, count) == 0);

@@ -133,6 +133,7 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"origin", "1,2,3"},
       {"spacing", "0.25,0.5,0.75"},
       {"counts", "3,5,7"},
+      {"track_camera", "true"},
       {"rays_per_probe", "64"},
       {"fixed_rays", "16"},
       {"max_ray_distance", "100"},
@@ -165,6 +166,7 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.origin = {1, 2, 3};
   expected.spacing = {0.25f, 0.5f, 0.75f};
   expected.counts = {3, 5, 7};
+  expected.track_camera = true;
   expected.rays_per_probe = 64;
   expected.fixed_rays = 16;
   expected.max_ray_distance = 100.0f;

@@ -28,7 +28,7 @@ template <>
 struct Field<IrradianceFieldParams> {
   static const ParamTable<IrradianceFieldParams>& table() { return field_param_table(); }
   static std::vector<std::string> unbounded() {
-    return {"classification", "max_rays_per_update", "seed"};
+    return {"track_camera", "classification", "max_rays_per_update", "seed"};
   }
 };
 template <>
