@@ -22,6 +22,10 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
       {
           param::flag("track_camera", &P::track_camera, param::BoolWords::kTrueFalse,
                       "the grid scrolls with the camera in whole cells"),
+          param::number("cascades", &P::cascades, 1, int(gpu::kMaxFieldVolumes),
+                        "volumes of `counts` probes around one centre, each coarser"),
+          param::number("cascade_spacing_ratio", &P::cascade_spacing_ratio, 1.0f, 16.0f,
+                        "spacing of each cascade over the previous one's"),
           param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
                         "blended rays per probe per update"),
           param::number("fixed_rays", &P::fixed_rays, 0, 256,
@@ -95,7 +99,24 @@ DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams*
 }
 
 uint64_t probe_count(const IrradianceFieldParams& p) {
-  return grid_probe_count(p.counts);
+  return grid_probe_count(p.counts) * p.cascades;
+}
+
+std::vector<FieldVolume> field_volumes(const IrradianceFieldParams& p) {
+  std::vector<FieldVolume> volumes;
+  const glm::vec3 half_cells = 0.5f * glm::vec3(p.counts - 1);
+  const glm::vec3 centre = p.origin + p.spacing * half_cells;
+  float scale = 1.0f;
+  for (uint32_t v = 0; v < p.cascades; ++v) {
+    FieldVolume volume;
+    volume.spacing = p.spacing * scale;
+    volume.origin = v == 0 ? p.origin : centre - volume.spacing * half_cells;
+    volume.counts = p.counts;
+    volume.first_probe = static_cast<uint32_t>(v * grid_probe_count(p.counts));
+    volumes.push_back(volume);
+    scale *= p.cascade_spacing_ratio;
+  }
+  return volumes;
 }
 
 uint32_t probe_slot(glm::ivec3 counts, glm::ivec3 scroll, glm::ivec3 coord) {
@@ -110,7 +131,7 @@ glm::ivec3 probe_coord(glm::ivec3 counts, glm::ivec3 scroll, uint32_t slot) {
   return (s - scroll + counts) % counts;
 }
 
-glm::ivec3 tracking_scroll(const IrradianceFieldParams& p, glm::vec3 camera) {
+glm::ivec3 tracking_scroll(const FieldVolume& p, glm::vec3 camera) {
   const glm::vec3 centre = p.origin + 0.5f * p.spacing * glm::vec3(p.counts - 1);
   const glm::vec3 cells = (camera - centre) / p.spacing;
   if (glm::any(glm::isnan(cells)) || glm::any(glm::isinf(cells))) return glm::ivec3(0);
@@ -121,6 +142,12 @@ glm::ivec3 tracking_scroll(const IrradianceFieldParams& p, glm::vec3 camera) {
 
 Status validate(const IrradianceFieldParams& p) {
   DDGI_TRY(field_param_table().check(p));
+  if (probe_count(p) > kMaxProbes) {
+    return invalid_argument("cascades=" + std::to_string(p.cascades) + " of " +
+                            std::to_string(grid_probe_count(p.counts)) + " probes make " +
+                            std::to_string(probe_count(p)) + " probes; at most " +
+                            std::to_string(kMaxProbes) + " fit (use fewer cascades or probes)");
+  }
   if ((p.relocation_iterations > 0 || p.classification) && p.fixed_rays < 8) {
     return invalid_argument("relocation and classification need fixed_rays >= 8 (got " +
                             std::to_string(p.fixed_rays) +

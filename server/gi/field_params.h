@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -45,6 +46,14 @@ struct IrradianceFieldParams {
   // cells so the camera is within a cell of the centre again; only the planes that enter are
   // traced anew. Off by default: a grid fitted to the scene covers it all.
   bool track_camera = false;
+  // Cascades (thesis sec. 6.2; docs/cascades.md): this many volumes of `counts` probes around
+  // the same centre, volume i spaced spacing x cascade_spacing_ratio^i (finest first), sampled
+  // with blend weights across them; with track_camera each scrolls on its own cell. [1, 8]. 1:
+  // one grid, as a fitted field is.
+  uint32_t cascades = 1;
+  // Each cascade's spacing over the previous one's, [1, 16]. 2: the thesis's pyramid (each
+  // level covers 8x the volume at the same probe count).
+  float cascade_spacing_ratio = 2.0f;
 
   // --- Tracing ------------------------------------------------------------------------------
   // Rays per probe per update that are shaded and blended, in [1, 1024]. 128 keeps noise low at
@@ -180,7 +189,19 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
 // The grid the scene asks for (sidecar `probe_grid`), else one fitted to its bounds.
 IrradianceFieldParams default_field_params(const Scene& scene);
 
+// Probes of the whole field: every volume's.
 uint64_t probe_count(const IrradianceFieldParams& params);
+
+// One volume of a field (docs/cascades.md): its grid and where its probes start among the
+// field's slots. Volume 0 is the grid of the field's origin, spacing and counts.
+struct FieldVolume {
+  glm::vec3 origin{0.0f};
+  glm::vec3 spacing{1.0f};
+  glm::ivec3 counts{1};
+  uint32_t first_probe = 0;
+};
+// The volumes of `params` as placed at creation: the cascades around volume 0's centre.
+std::vector<FieldVolume> field_volumes(const IrradianceFieldParams& params);
 
 // A scrolling grid's addressing (FieldConstants::scroll, shaders/common/field.glsl): the slot
 // (index into the probe arrays and atlases) of the probe at grid coordinate `coord`, and the
@@ -191,7 +212,7 @@ glm::ivec3 probe_coord(glm::ivec3 counts, glm::ivec3 scroll, uint32_t slot);
 // The whole cells a tracking grid scrolls so that `camera` is within a cell of its centre on
 // every axis; zero while it is (moves of less than a cell never scroll, so a camera moving
 // to and fro across a cell border does not make the grid flicker between two places).
-glm::ivec3 tracking_scroll(const IrradianceFieldParams& params, glm::vec3 camera);
+glm::ivec3 tracking_scroll(const FieldVolume& volume, glm::vec3 camera);
 
 // The mode a shadow field is updated in when it serves a frame in `frame_mode` and the probe
 // rays of an irradiance field with `field` (null: no field, or not updated): the frame's when

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/log.h"
+#include "gi/probe_grid.h"
 
 namespace ddgi {
 namespace {
@@ -186,7 +188,7 @@ Status IrradianceField::create_resources() {
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   DDGI_ASSIGN_OR_RETURN(constants_,
-                        vk::Buffer::create(context_, sizeof(gpu::FieldConstants), storage,
+                        vk::Buffer::create(context_, sizeof(Constants), storage,
                                            vk::MemoryUsage::kDeviceLocal, "field constants"));
   DDGI_ASSIGN_OR_RETURN(probes_,
                         vk::Buffer::create(context_, probes * sizeof(gpu::ProbeState), storage,
@@ -252,9 +254,10 @@ Status IrradianceField::set_update_path(FieldUpdatePath path) {
 
 Status IrradianceField::reset() {
   update_index_ = 0;
-  scroll_ = glm::ivec3(0);
-  unscrolled_origin_ = params_.origin;
-  scrolled_cells_ = glm::ivec3(0);
+  volumes_.clear();
+  for (const FieldVolume& grid : field_volumes(params_)) {
+    volumes_.push_back({grid, grid.origin, glm::ivec3(0), glm::ivec3(0)});
+  }
   const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
   std::vector<gpu::ProbeState> states(probes);
   for (gpu::ProbeState& s : states) s = {glm::vec3(0.0f), gpu::kProbeResetHistory};
@@ -263,9 +266,9 @@ Status IrradianceField::reset() {
       {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
   scheduler_ = ProbeScheduler(probes);
   seen_moves_ = scene_.move_count();
-  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  const Constants c = constants(DirectMode::kTracedShadows);
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), c.data());
     const VkClearColorValue zero{};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     for (const vk::Image* image : {&irradiance_, &distance_}) {
@@ -332,7 +335,7 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
   DDGI_TRY(write_probe_list(probes));
   probe_list_is_active_ = false;
   const uint32_t n = static_cast<uint32_t>(probes.size());
-  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  const Constants c = constants(DirectMode::kTracedShadows);
   // One submission: (trace fixed rays, relocate) x iterations, trace fixed rays, classify.
   std::vector<vk::Pass> passes = {
       vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_, c)};
@@ -380,37 +383,93 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
       {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])});
 }
 
-glm::vec3 IrradianceField::grid_point(uint32_t slot) const {
-  return params_.origin + params_.spacing * glm::vec3(probe_coord(params_.counts, scroll_, slot));
+Status require_one_volume(const IrradianceField& field, const std::string& what) {
+  if (field.params().cascades == 1) return ok_status();
+  return failed_precondition(what + " of a field of " + std::to_string(field.params().cascades) +
+                             " cascades is not supported yet: per-volume dumps and streams are "
+                             "not built (docs/cascades.md); use cascades=1");
 }
 
-Status IrradianceField::scroll(glm::ivec3 cells) {
-  if (cells == glm::ivec3(0)) return ok_status();
-  scrolled_cells_ += cells;
-  params_.origin = unscrolled_origin_ + glm::vec3(scrolled_cells_) * params_.spacing;
-  // Nothing stays: a new field where the grid now is.
-  if (glm::any(glm::greaterThanEqual(glm::abs(cells), params_.counts))) return reset();
-  scroll_ = ((scroll_ + cells) % params_.counts + params_.counts) % params_.counts;
-  const std::vector<uint32_t> entering = entering_slots(cells);
+uint32_t IrradianceField::volume_of(uint32_t slot) const {
+  uint32_t v = 0;
+  while (v + 1 < volumes_.size() && slot >= volumes_[v + 1].grid.first_probe) ++v;
+  return v;
+}
+
+glm::vec3 IrradianceField::grid_point(uint32_t slot) const {
+  const VolumeState& v = volumes_[volume_of(slot)];
+  const FieldVolume& g = v.grid;
+  return g.origin + g.spacing * glm::vec3(probe_coord(g.counts, v.scroll, slot - g.first_probe));
+}
+
+std::vector<FieldVolume> IrradianceField::volumes() const {
+  std::vector<FieldVolume> grids;
+  for (const VolumeState& v : volumes_) grids.push_back(v.grid);
+  return grids;
+}
+
+bool IrradianceField::scrolled() const {
+  return std::any_of(volumes_.begin(), volumes_.end(),
+                     [](const VolumeState& v) { return v.scroll != glm::ivec3(0); });
+}
+
+void IrradianceField::move_volume(uint32_t volume, glm::ivec3 cells,
+                                  std::vector<uint32_t>& entering) {
+  VolumeState& v = volumes_[volume];
+  FieldVolume& g = v.grid;
+  v.scrolled_cells += cells;
+  g.origin = v.unscrolled_origin + glm::vec3(v.scrolled_cells) * g.spacing;
+  if (volume == 0) params_.origin = g.origin;
+  // Nothing stays: every probe enters, in the volume's new place.
+  const bool everything = glm::any(glm::greaterThanEqual(glm::abs(cells), g.counts));
+  v.scroll = ((v.scroll + cells) % g.counts + g.counts) % g.counts;
+  const uint32_t probes = static_cast<uint32_t>(grid_probe_count(g.counts));
+  for (uint32_t local = 0; local < probes; ++local) {
+    const glm::ivec3 c = probe_coord(g.counts, v.scroll, local);
+    bool entered = everything;
+    for (int axis = 0; axis < 3; ++axis) {
+      // A scroll by +k brings in the last k planes of the axis, by -k the first k.
+      entered = entered || (cells[axis] > 0 && c[axis] >= g.counts[axis] - cells[axis]) ||
+                (cells[axis] < 0 && c[axis] < -cells[axis]);
+    }
+    if (entered) entering.push_back(g.first_probe + local);
+  }
+}
+
+Status IrradianceField::start_probes(const std::vector<uint32_t>& entering) {
   DDGI_TRY(clear_probes(entering));
   if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
   return manage_probes(entering, params_.relocation_iterations > 0, {});
 }
 
-std::vector<uint32_t> IrradianceField::entering_slots(glm::ivec3 cells) const {
-  std::vector<uint32_t> slots;
-  const uint32_t probes = static_cast<uint32_t>(probe_count(params_));
-  for (uint32_t p = 0; p < probes; ++p) {
-    const glm::ivec3 c = probe_coord(params_.counts, scroll_, p);
-    bool entered = false;
-    for (int axis = 0; axis < 3; ++axis) {
-      // A scroll by +k brings in the last k planes of the axis, by -k the first k.
-      entered = entered || (cells[axis] > 0 && c[axis] >= params_.counts[axis] - cells[axis]) ||
-                (cells[axis] < 0 && c[axis] < -cells[axis]);
-    }
-    if (entered) slots.push_back(p);
+Status IrradianceField::scroll(uint32_t volume, glm::ivec3 cells) {
+  if (volume >= volumes_.size()) {
+    return invalid_argument("volume " + std::to_string(volume) + " of a field of " +
+                            std::to_string(volumes_.size()));
   }
-  return slots;
+  if (cells == glm::ivec3(0)) return ok_status();
+  std::vector<uint32_t> entering;
+  move_volume(volume, cells, entering);
+  return start_probes(entering);
+}
+
+bool IrradianceField::tracking_would_scroll(glm::vec3 camera) const {
+  if (!params_.track_camera) return false;
+  return std::any_of(volumes_.begin(), volumes_.end(), [&](const VolumeState& v) {
+    return tracking_scroll(v.grid, camera) != glm::ivec3(0);
+  });
+}
+
+Status IrradianceField::track(glm::vec3 camera) {
+  if (!params_.track_camera) return ok_status();
+  tracked_camera_ = camera;
+  std::vector<uint32_t> entering;
+  for (uint32_t v = 0; v < volumes_.size(); ++v) {
+    const glm::ivec3 cells = tracking_scroll(volumes_[v].grid, camera);
+    if (cells != glm::ivec3(0)) move_volume(v, cells, entering);
+  }
+  if (entering.empty()) return ok_status();
+  return start_probes(entering);
 }
 
 Status IrradianceField::clear_probes(const std::vector<uint32_t>& slots) {
@@ -444,9 +503,9 @@ Status IrradianceField::clear_probes(const std::vector<uint32_t>& slots) {
     return regions;
   };
   const bool sh = params_.basis == ProbeBasis::kSh;
-  const gpu::FieldConstants c = constants(DirectMode::kTracedShadows);
+  const Constants c = constants(DirectMode::kTracedShadows);
   return context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), &c);
+    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), c.data());
     vkCmdFillBuffer(cmd, zero_tile_.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier_all(cmd);
     if (sh) {
@@ -480,24 +539,28 @@ Status IrradianceField::prepare() {
     regions = {scene_.bounds()};
   } else {
     // Grow each region by a cell and the self-shadow bias (2021 paper, fig. 10): probes that
-    // can be in the cage of a point on the moved object, before and after the move.
-    const float min_spacing = std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
-    const glm::vec3 grow =
-        params_.spacing + glm::vec3(0.75f * min_spacing * params_.self_shadow_bias);
-    for (Bounds& r : regions) {
-      r.min -= grow;
-      r.max += grow;
-    }
-    for (uint32_t p = 0; p < probes; ++p) {
-      const glm::vec3 grid = grid_point(p);
-      for (const Bounds& r : regions) {
-        // The probe may sit up to the offset limit from its grid point.
-        const glm::vec3 slack = params_.probe_offset_limit * params_.spacing;
-        if (glm::all(glm::greaterThanEqual(grid + slack, r.min)) &&
-            glm::all(glm::lessThanEqual(grid - slack, r.max))) {
-          affected.push_back(p);
-          break;
-        }
+    // can be in the cage of a point on the moved object, before and after the move; per
+    // volume, since cells differ. The coarsest volume's growth marks probes Awake (the most).
+    const std::vector<Bounds> moved = regions;
+    for (const VolumeState& v : volumes_) {
+      const FieldVolume& g = v.grid;
+      const float min_spacing = std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+      const glm::vec3 grow = g.spacing + glm::vec3(0.75f * min_spacing * params_.self_shadow_bias);
+      regions = moved;
+      for (Bounds& r : regions) {
+        r.min -= grow;
+        r.max += grow;
+      }
+      // The probe may sit up to the offset limit from its grid point.
+      const glm::vec3 slack = params_.probe_offset_limit * g.spacing;
+      const uint32_t end = g.first_probe + static_cast<uint32_t>(grid_probe_count(g.counts));
+      for (uint32_t p = g.first_probe; p < end; ++p) {
+        const glm::vec3 grid = grid_point(p);
+        const bool near = std::any_of(regions.begin(), regions.end(), [&](const Bounds& r) {
+          return glm::all(glm::greaterThanEqual(grid + slack, r.min)) &&
+                 glm::all(glm::lessThanEqual(grid - slack, r.max));
+        });
+        if (near) affected.push_back(p);
       }
     }
   }
@@ -531,12 +594,9 @@ Status IrradianceField::set_params(const IrradianceFieldParams& params) {
   return ok_status();
 }
 
-gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
+IrradianceField::Constants IrradianceField::constants(DirectMode direct_mode) const {
+  Constants all{};
   gpu::FieldConstants c{};
-  c.origin = params_.origin;
-  c.spacing = params_.spacing;
-  c.counts = params_.counts;
-  c.scroll = scroll_;
   c.probe_count = static_cast<uint32_t>(probe_count(params_));
   c.rays_per_probe = params_.rays_per_probe;
   c.fixed_rays = params_.fixed_rays;
@@ -557,12 +617,9 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.energy_conservation = params_.energy_conservation;
   c.weight_crush_threshold = params_.weight_crush_threshold;
   c.max_ray_distance = params_.max_ray_distance;
-  c.max_visibility_distance = visibility_range(params_.spacing);
   c.ray_rotation = random_rotation(params_.seed, update_index_);
   c.direct_mode = static_cast<uint32_t>(direct_mode);
   c.probe_offset_limit = params_.probe_offset_limit;
-  c.min_frontface_distance = params_.min_frontface_distance *
-                             std::min({params_.spacing.x, params_.spacing.y, params_.spacing.z});
   c.backface_threshold = params_.backface_threshold;
   c.emitter_samples = params_.emitter_samples;
   c.basis = static_cast<uint32_t>(params_.basis);
@@ -570,7 +627,38 @@ gpu::FieldConstants IrradianceField::constants(DirectMode direct_mode) const {
   c.sh_band1 = bands[1];
   c.sh_band2 = bands[2];
   c.probe_bounces = params_.probe_bounces;
-  return c;
+  c.volume_count = static_cast<uint32_t>(volumes_.size());
+  // What differs between volumes: the grid and what scales with its spacing.
+  for (size_t v = 0; v < volumes_.size(); ++v) {
+    gpu::FieldConstants& volume = all[v];
+    volume = c;
+    const FieldVolume& g = volumes_[v].grid;
+    volume.origin = g.origin;
+    volume.spacing = g.spacing;
+    volume.counts = g.counts;
+    volume.scroll = volumes_[v].scroll;
+    volume.first_probe = g.first_probe;
+    volume.max_visibility_distance = visibility_range(g.spacing);
+    volume.min_frontface_distance =
+        params_.min_frontface_distance * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+    std::tie(volume.blend_min, volume.blend_max) = blend_box(g);
+    volume.blend_cell = g.spacing;
+  }
+  return all;
+}
+
+std::pair<glm::vec3, glm::vec3> IrradianceField::blend_box(const FieldVolume& g) const {
+  const glm::vec3 half_cells = 0.5f * glm::vec3(g.counts - 1);
+  if (params_.track_camera && tracked_camera_) {
+    // Centred on the camera, tightened by two cells from the grid's half extent (2021 paper,
+    // sec. 7.3): with the grid's centre within a cell of the camera, the weight is 0 before the
+    // grid's edge however the grid last leapfrogged, so a scroll changes no weight.
+    const glm::vec3 half = g.spacing * glm::max(half_cells - 2.0f, glm::vec3(0.0f));
+    return {*tracked_camera_ - half, *tracked_camera_ + half};
+  }
+  // The grid shrunk by a cell: the weight is 0 on its outer probe planes, where cages end.
+  const glm::vec3 inset = g.spacing * glm::min(glm::vec3(1.0f), half_cells);
+  return {g.origin + inset, g.origin + g.spacing * glm::vec3(g.counts - 1) - inset};
 }
 
 uint64_t IrradianceField::rays_per_update() const {
@@ -719,7 +807,7 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
   slots.texels.resize(size_t(slots.width) * slots.height * channels);
   DDGI_TRY(vk::download_image(context_, image, slots.texels.data(),
                               slots.texels.size() * sizeof(float)));
-  if (scroll_ == glm::ivec3(0)) return slots;
+  if (!scrolled()) return slots;
   // Tile g of the result is the tile of the probe at grid index g.
   AtlasImage grid = slots;
   const uint32_t side = texels + 2 * gpu::kAtlasBorder;
@@ -741,16 +829,22 @@ Result<IrradianceField::AtlasImage> IrradianceField::read_atlas(const vk::Image&
 }
 
 std::vector<uint32_t> IrradianceField::slots_in_grid_order() const {
-  std::vector<uint32_t> order(probe_count(params_));
-  for (uint32_t g = 0; g < order.size(); ++g) {
-    order[g] = probe_slot(params_.counts, scroll_, probe_coord(params_.counts, glm::ivec3(0), g));
+  std::vector<uint32_t> order;
+  order.reserve(probe_count(params_));
+  for (const VolumeState& v : volumes_) {
+    const FieldVolume& g = v.grid;
+    const uint32_t probes = static_cast<uint32_t>(grid_probe_count(g.counts));
+    for (uint32_t local = 0; local < probes; ++local) {
+      order.push_back(g.first_probe +
+                      probe_slot(g.counts, v.scroll, probe_coord(g.counts, glm::ivec3(0), local)));
+    }
   }
   return order;
 }
 
 template <typename T>
 std::vector<T> IrradianceField::in_grid_order(std::vector<T> per_slot) const {
-  if (scroll_ == glm::ivec3(0)) return per_slot;
+  if (!scrolled()) return per_slot;
   const std::vector<uint32_t> order = slots_in_grid_order();
   std::vector<T> per_probe(per_slot.size());
   for (size_t g = 0; g < order.size(); ++g) per_probe[g] = per_slot[order[g]];

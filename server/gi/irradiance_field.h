@@ -7,7 +7,10 @@
 // Frame kernels sample it through descriptor set 2 (shaders/shared/field_data.h).
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/result.h"
@@ -42,6 +45,11 @@ enum class FieldUpdatePath {
   kSplit,  // field_trace_surfels, field_shade, field_blend_irradiance/_distance, field_borders
 };
 
+class IrradianceField;
+// Dumps and streams describe one grid: FAILED_PRECONDITION naming `what` for a field of several
+// volumes (cascades), whose per-volume dumps are not built yet (docs/cascades.md).
+Status require_one_volume(const IrradianceField& field, const std::string& what);
+
 class IrradianceField {
  public:
   // `shadow_field` (optional, must outlive the field): what probe-ray hits read in the
@@ -59,20 +67,24 @@ class IrradianceField {
   // Drops all history: every probe starts over at its next update.
   Status reset();
 
-  // Moves the grid by `cells` whole cells (its origin by cells x spacing) as a 3D circular
+  // The field's volumes as they are now (docs/cascades.md): volume 0 is the grid of params(),
+  // the others its cascades.
+  std::vector<FieldVolume> volumes() const;
+  // Moves `volume` by `cells` whole cells (its origin by cells x spacing) as a 3D circular
   // buffer (docs/cascades.md): probes whose world position stays keep their slot, maps and
   // state bit for bit; the planes that leave are re-initialised on the other side (maps
   // cleared, history reset, relocated and classified) and traced by the next update. A move of
-  // the whole grid or more starts the field over. Submits GPU work and rewrites the probe
+  // the whole grid or more starts the volume over. Submits GPU work and rewrites the probe
   // list: no frame or update that uses the field may be in flight.
-  Status scroll(glm::ivec3 cells);
-  // The circular buffer's phase (FieldConstants::scroll).
-  glm::ivec3 scroll_phase() const { return scroll_; }
-  // The scroll that brings a tracking field (track_camera) back around `camera`; zero for a
-  // field that does not track or needs no scroll.
-  glm::ivec3 tracking_scroll(glm::vec3 camera) const {
-    return params_.track_camera ? ddgi::tracking_scroll(params_, camera) : glm::ivec3(0);
-  }
+  Status scroll(uint32_t volume, glm::ivec3 cells);
+  // The circular buffer's phase of `volume` (FieldConstants::scroll).
+  glm::ivec3 scroll_phase(uint32_t volume = 0) const { return volumes_.at(volume).scroll; }
+  // A tracking field (track_camera) follows `camera`: every volume scrolls back around it (one
+  // submission for all), and the volumes' blend boxes are centred on it from the next update
+  // on. Does nothing to a field that does not track. When tracking_would_scroll(camera), no
+  // frame or update that uses the field may be in flight (see scroll()).
+  Status track(glm::vec3 camera);
+  bool tracking_would_scroll(glm::vec3 camera) const;
 
   // Brings probe states up to date with moved geometry (reclassifies probes near moved
   // instances, waking sleeping ones). Call before recording updates; it submits GPU work.
@@ -158,7 +170,11 @@ class IrradianceField {
   // A kernel of the update set's layouts (+ the shadow field's sampling set as set 3).
   Result<vk::Kernel> update_kernel(const char* name, bool traces, glm::uvec3 workgroup,
                                    bool reads_shadow_field = false) const;
-  gpu::FieldConstants constants(DirectMode direct_mode) const;
+  // Every volume's constants (the unused entries zero).
+  using Constants = std::array<gpu::FieldConstants, gpu::kMaxFieldVolumes>;
+  Constants constants(DirectMode direct_mode) const;
+  // Where volume v's blend weight is 1 (FieldConstants::blend_min/max).
+  std::pair<glm::vec3, glm::vec3> blend_box(const FieldVolume& volume) const;
   // Lights whose visibility probe-ray hits trace in `direct_mode` (the rest read the shadow
   // field or are unshadowed).
   uint32_t traced_lights(DirectMode direct_mode) const;
@@ -168,10 +184,15 @@ class IrradianceField {
   Status manage_probes(const std::vector<uint32_t>& probes, bool relocate,
                        const std::vector<Bounds>& dynamic_regions);
   Status write_probe_list(const std::vector<uint32_t>& probes);
-  // The grid point (no relocation offset) of the probe in `slot`.
+  // The volume that owns `slot`, and the slot's grid point (no relocation offset).
+  uint32_t volume_of(uint32_t slot) const;
   glm::vec3 grid_point(uint32_t slot) const;
-  // Slots whose probes a scroll by `cells` brought in (with the new phase in scroll_).
-  std::vector<uint32_t> entering_slots(glm::ivec3 cells) const;
+  // Moves `volume` by `cells` (its origin and phase) and appends the slots of the probes that
+  // entered to `entering`; a move of the whole grid or more enters them all.
+  void move_volume(uint32_t volume, glm::ivec3 cells, std::vector<uint32_t>& entering);
+  // Clears, relocates and classifies entering probes (the second half of a scroll).
+  Status start_probes(const std::vector<uint32_t>& entering);
+  bool scrolled() const;
   // Zero maps (or SH coefficients), zero offset, Vigilant with a history reset, for `slots`;
   // and the constants (origin, phase) uploaded.
   Status clear_probes(const std::vector<uint32_t>& slots);
@@ -208,11 +229,17 @@ class IrradianceField {
   IrradianceFieldParams params_;
   AtlasLayout layout_;
   uint64_t update_index_ = 0;
-  glm::ivec3 scroll_{0};  // FieldConstants::scroll
-  // Where the grid was at the last reset and the cells it scrolled since: the origin is
-  // recomputed from them, so that many scrolls do not accumulate rounding.
-  glm::vec3 unscrolled_origin_{0.0f};
-  glm::ivec3 scrolled_cells_{0};
+  struct VolumeState {
+    FieldVolume grid;  // where it is now
+    // Where it was at the last reset and the cells it scrolled since: the origin is recomputed
+    // from them, so that many scrolls do not accumulate rounding.
+    glm::vec3 unscrolled_origin{0.0f};
+    glm::ivec3 scrolled_cells{0};
+    glm::ivec3 scroll{0};  // FieldConstants::scroll
+  };
+  std::vector<VolumeState> volumes_;
+  // The camera the blend boxes of a tracking field are centred on (track()).
+  std::optional<glm::vec3> tracked_camera_;
   float hysteresis_cap_ = 1.0f;  // warm_up() lowers the hysteresis below this for a while
   uint64_t gpu_bytes_ = 0;
 

@@ -224,6 +224,7 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
     case v1::ATLAS_KIND_IRRADIANCE:
     case v1::ATLAS_KIND_DISTANCE: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
       auto image = kind == v1::ATLAS_KIND_IRRADIANCE ? field->read_irradiance_atlas()
                                                      : field->read_distance_atlas();
       if (!image.ok()) return image.error();
@@ -246,11 +247,13 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
     }
     case v1::ATLAS_KIND_SH: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShProbe> probes, field->read_sh_probes());
       return sh_dump(*field, probes, format);
     }
     case v1::ATLAS_KIND_PROBE_STATES: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
+      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field->read_probe_states());
       return probe_state_dump(*field, states, format);
     }

@@ -458,6 +458,14 @@ void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParam
   states->set_awake(counts.awake);
   states->set_sleeping(counts.sleeping);
   states->set_off(counts.off);
+  for (const FieldVolume& volume : field.volumes()) {
+    v1::FieldVolume* v = out->add_volumes();
+    to_proto(volume.origin, v->mutable_origin());
+    to_proto(volume.spacing, v->mutable_spacing());
+    v->set_counts_x(volume.counts.x);
+    v->set_counts_y(volume.counts.y);
+    v->set_counts_z(volume.counts.z);
+  }
 }
 
 void to_proto(const ShadowField& field, uint64_t command_seq, v1::FieldParams* out) {

@@ -86,6 +86,7 @@ void set_bit(std::string& mask, size_t p) {
 }  // namespace
 
 Result<std::shared_ptr<const ProbeSnapshot>> take_probe_snapshot(IrradianceField& field) {
+  DDGI_TRY(require_one_volume(field, "StreamProbes"));
   auto s = std::make_shared<ProbeSnapshot>();
   s->field_updates = field.updates();
   s->grid = grid_of(field.params());

@@ -158,11 +158,9 @@ Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<Frame
   // A tracking field follows the camera of the frame that carries the update: the first view
   // drawn in an iteration (docs/cascades.md). Scrolling rewrites probe states and maps, which
   // frames in flight read.
-  const glm::ivec3 scroll =
-      batch->field_due && field() ? field()->tracking_scroll(camera.position) : glm::ivec3(0);
-  if (scroll != glm::ivec3(0)) {
-    DDGI_TRY(wait_for_frames_on_gpu());
-    DDGI_TRY(field()->scroll(scroll));
+  if (batch->field_due && field()) {
+    if (field()->tracking_would_scroll(camera.position)) DDGI_TRY(wait_for_frames_on_gpu());
+    DDGI_TRY(field()->track(camera.position));
   }
   const bool behind_another = !in_flight_.empty();
   DDGI_ASSIGN_OR_RETURN(frame.pending, state_.scene->submit(settings, target, batch->field_due));

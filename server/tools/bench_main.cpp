@@ -5,6 +5,7 @@
 // camera rays traced by kernels that only record hit distances. `update / raw` and
 // `primary / raw` are the figures of merit: what lighting and blending cost over the rays.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -42,6 +43,11 @@ every combination of --grids and --rays. Prints a markdown table (median millise
                         split (trace, shade, per-texel blends, borders)  [fused]
   --backend B           auto | query | pipeline                        [auto]
   --field NAME=VALUE    any other field parameter (repeatable)
+  --scroll-every N      also scroll the field one cell along x (alternately + and -) before
+                        every Nth timed frame and print a second table: the scroll's own cost
+                        (wall ms: clearing the entering plane, relocating and classifying it)
+                        and the update's median on frames after a scroll and on the others;
+                        0: no scrolling                                  [0]
   --device NAME         Vulkan device name filter
 )";
 
@@ -84,7 +90,25 @@ struct BenchJob {
   std::vector<uint32_t> ray_counts;
   std::vector<FieldUpdatePath> paths;
   std::vector<std::string> field_assignments;
+  int64_t scroll_every = 0;
 };
+
+// The scroll table's row of one configuration.
+struct ScrollRow {
+  std::string scene;
+  glm::ivec3 counts{0};
+  uint32_t rays = 0;
+  size_t scrolls = 0;
+  double scroll_ms = 0.0;           // median wall time of IrradianceField::scroll()
+  double update_after_ms = 0.0;     // field update median, frames right after a scroll
+  double update_ordinary_ms = 0.0;  // the same, every other frame
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
 
 const char* path_name(FieldUpdatePath path) {
   return path == FieldUpdatePath::kFused ? "fused" : "split";
@@ -116,6 +140,7 @@ Result<BenchJob> parse_job(const Flags& flags) {
   }
   if (job.paths.empty()) return invalid_argument("--paths: no update path given");
   job.field_assignments = flags.get_all("field");
+  DDGI_ASSIGN_OR_RETURN(job.scroll_every, flags.get_int("scroll-every", 0, 0, 10000));
   return job;
 }
 
@@ -154,7 +179,8 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
 // One table row: a GI stack for the configuration, warmed up, then `frames` timed frames, each
 // with both raw-ray baselines recorded after the update in the same submission.
 Status bench_row(vk::Context& context, const BenchJob& job, const std::string& scene_path,
-                 const Scene& scene, const std::string& grid, uint32_t rays, FieldUpdatePath path) {
+                 const Scene& scene, const std::string& grid, uint32_t rays, FieldUpdatePath path,
+                 std::vector<ScrollRow>& scroll_rows) {
   DDGI_ASSIGN_OR_RETURN(
       GiStackOptions options,
       fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
@@ -169,10 +195,21 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
   DDGI_ASSIGN_OR_RETURN(auto target,
                         FrameTarget::create(context, job.settings.width, job.settings.height));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
-  tools::PassTable table;
+  tools::PassTable table, after_scroll, ordinary;
+  std::vector<double> scroll_ms;
   // The warm-up's frames are the timed ones, untimed: the clocks rise under this very load
   // (field-only warm-up updates, each waited for, leave the GPU idle between them).
   for (int64_t f = -job.warmup; f < job.frames; ++f) {
+    const bool scrolls = job.scroll_every > 0 && f >= 0 && f % job.scroll_every == 0;
+    if (scrolls) {
+      // Back and forth, so that the grid stays on the scene.
+      const int step = scroll_ms.size() % 2 == 0 ? 1 : -1;
+      const auto start = std::chrono::steady_clock::now();
+      DDGI_TRY(field.scroll(0, {step, 0, 0}));
+      scroll_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
+    }
     DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> before,
                           gi->frame_update(job.settings.direct_mode, {}));
     DDGI_ASSIGN_OR_RETURN(std::vector<vk::Pass> raw_field, field.raw_trace_passes());
@@ -182,16 +219,38 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
     for (vk::Pass& p : raw_primary) before.push_back(std::move(p));
     DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer->render(job.settings, *target, before));
     if (f >= 0) table.add(frame.pass_times);
+    if (f >= 0) (scrolls ? after_scroll : ordinary).add(frame.pass_times);
   }
   print_row(table, *gi, scene_path, path);
+  if (job.scroll_every > 0) {
+    scroll_rows.push_back({scene_path.substr(scene_path.find_last_of('/') + 1),
+                           field.params().counts, rays, scroll_ms.size(), median(scroll_ms),
+                           after_scroll.group_median(vk::PassGroup::kIrradianceField),
+                           ordinary.group_median(vk::PassGroup::kIrradianceField)});
+  }
   return ok_status();
+}
+
+// What a scroll costs: its own submission (the entering plane cleared, relocated, classified;
+// wall time, readbacks included) and the update after it against the others (docs/cascades.md).
+void print_scroll_table(const std::vector<ScrollRow>& rows) {
+  std::printf(
+      "\n| scene | probes | rays/probe | scrolls | entering probes | scroll (wall ms) | "
+      "update after a scroll | update otherwise | after / otherwise |\n"
+      "|---|---|---|---|---|---|---|---|---|\n");
+  for (const ScrollRow& r : rows) {
+    std::printf("| %s | %dx%dx%d | %u | %zu | %d | %.3f | %.3f | %.3f | %.3f |\n", r.scene.c_str(),
+                r.counts.x, r.counts.y, r.counts.z, r.rays, r.scrolls, r.counts.y * r.counts.z,
+                r.scroll_ms, r.update_after_ms, r.update_ordinary_ms,
+                r.update_after_ms / r.update_ordinary_ms);
+  }
 }
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
       Flags flags, Flags::parse(argc, argv,
                                 {"width", "height", "frames", "warmup", "grids", "probes", "rays",
-                                 "paths", "backend", "field", "device"},
+                                 "paths", "backend", "field", "device", "scroll-every"},
                                 {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
@@ -209,17 +268,19 @@ Status run(int argc, char** argv) {
       "trace | shade | blend | field total | raw trace | update / raw | Mrays/s | primary | "
       "primary raw | primary / raw | direct | indirect | tonemap | frame total |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<ScrollRow> scroll_rows;
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     job.settings.camera = default_camera(scene);
     for (const std::string& grid : job.grids) {
       for (uint32_t rays : job.ray_counts) {
         for (FieldUpdatePath path : job.paths) {
-          DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays, path));
+          DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays, path, scroll_rows));
         }
       }
     }
   }
+  if (!scroll_rows.empty()) print_scroll_table(scroll_rows);
   return ok_status();
 }
 

@@ -11,8 +11,12 @@
 #include "common/sh.glsl"
 
 layout(set = kFieldSet, binding = kFieldBindingConstants, scalar) readonly buffer FieldBlock {
-  FieldConstants field;
+  FieldConstants volumes[];  // one per volume, finest first (field_data.h)
 };
+// `field` is the constants of the volume being worked on: a kernel that handles a probe selects
+// the probe's volume (select_probe_volume), the cross-volume query selects each in turn.
+uint field_volume = 0u;
+#define field volumes[field_volume]
 layout(set = kFieldSet, binding = kFieldBindingProbes, scalar) buffer ProbeStates {
   ProbeState probe_states[];
 };
@@ -23,19 +27,30 @@ layout(set = kFieldSet, binding = kFieldBindingSh, scalar) buffer ShProbes {
 };
 
 // --- Probe addressing ---------------------------------------------------------------------
-// Probe p is the slot p = x + counts.x * (y + counts.y * z) of the probe arrays and atlases.
-// The slot of the probe at grid coordinate c is c shifted by the scroll phase, per axis modulo
-// the count (field_data.h): a scrolling field moves whole planes without moving their data.
+// Probe p (a slot of the probe arrays and atlases) of the selected volume is its local slot
+// s = p - first_probe = x + counts.x * (y + counts.y * z). The slot of the probe at grid
+// coordinate c is c shifted by the scroll phase, per axis modulo the count (field_data.h): a
+// scrolling volume moves whole planes without moving their data.
 ivec3 probe_grid_coord(uint p) {
-  const uint x = p % uint(field.counts.x);
-  const uint yz = p / uint(field.counts.x);
+  const uint local = p - field.first_probe;
+  const uint x = local % uint(field.counts.x);
+  const uint yz = local / uint(field.counts.x);
   const ivec3 slot = ivec3(int(x), int(yz % uint(field.counts.y)), int(yz / uint(field.counts.y)));
   return (slot - field.scroll + field.counts) % field.counts;
 }
 
 uint probe_index(ivec3 c) {
   const ivec3 slot = (c + field.scroll) % field.counts;
-  return uint(slot.x) + uint(field.counts.x) * (uint(slot.y) + uint(field.counts.y) * uint(slot.z));
+  return field.first_probe + uint(slot.x) +
+         uint(field.counts.x) * (uint(slot.y) + uint(field.counts.y) * uint(slot.z));
+}
+
+// Makes `field` the constants of the volume that owns probe p.
+void select_probe_volume(uint p) {
+  field_volume = 0u;
+  for (uint v = 1u; v < volumes[0].volume_count; ++v) {
+    if (p >= volumes[v].first_probe) field_volume = v;
+  }
 }
 
 uint probe_state(uint p) {
@@ -122,9 +137,8 @@ vec3 probe_irradiance(uint p, vec3 n) {
 }
 
 // --- The cage query -----------------------------------------------------------------------
-// Cosine-weighted mean radiance M (= E / pi, see field_data.h) arriving at `p` around normal
-// `n`. `to_viewer`: unit direction from p to whoever looks at it (camera or probe).
-vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
+// The selected volume's M at `p` (sample_irradiance below blends the volumes).
+vec3 sample_volume_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
   const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
   // 2021 paper, eq. 2: one bias along the normal and the view direction.
   const vec3 bias = (n * 0.2 + to_viewer * 0.8) * (0.75 * min_spacing) * field.self_shadow_bias;
@@ -171,6 +185,33 @@ vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
   if (!(weight_sum > 0.0)) return vec3(0.0);
   const vec3 blended = sum / weight_sum;
   return sanitize_radiance(field.basis == kFieldBasisOctahedral ? blended * blended : blended);
+}
+
+// The selected volume's weight at `p`: 1 inside its blend box, falling linearly to 0 over one
+// cell towards the box's faces (the 2021 paper's volume blending, sec. 7.3).
+float volume_weight(vec3 p) {
+  const vec3 inside = min(p - field.blend_min, field.blend_max - p) / field.blend_cell;
+  return clamp(min(inside.x, min(inside.y, inside.z)) + 1.0, 0.0, 1.0);
+}
+
+// Cosine-weighted mean radiance M (= E / pi, see field_data.h) arriving at `p` around normal
+// `n`. `to_viewer`: unit direction from p to whoever looks at it (camera or probe). Volumes are
+// visited finest first; each takes its weight of what the finer ones left, and the coarsest
+// takes all that is left (so one volume answers everywhere, clamped at its edges, as a single
+// grid does). The selected volume is kept.
+vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
+  const uint selected = field_volume;
+  const uint count = volumes[0].volume_count;
+  vec3 sum = vec3(0.0);
+  float left = 1.0;
+  for (uint v = 0u; v < count && left > 0.0; ++v) {
+    field_volume = v;
+    const float w = v + 1u == count ? left : left * volume_weight(p);
+    if (w > 0.0) sum += w * sample_volume_irradiance(p, n, to_viewer);
+    left -= w;
+  }
+  field_volume = selected;
+  return sum;
 }
 
 #endif

@@ -22,7 +22,7 @@ bool ray_hit_back_face(float d) { return (floatBitsToUint(d) & 0x80000000u) != 0
 // Hit distance; max_ray_distance on a miss.
 float ray_distance(float d) { return min(abs(d), field.max_ray_distance); }
 
-// False past the end of the dispatch.
+// False past the end of the dispatch. Selects the probe's volume (`field`).
 bool field_item(out uint probe, out uint local) {
   const uint id = linear_invocation(pc.row_width);
   probe = 0u;
@@ -30,6 +30,7 @@ bool field_item(out uint probe, out uint local) {
   if (id >= pc.count) return false;
   probe = probe_list[(pc.list_start + id / pc.per_probe) % pc.list_size];
   local = id % pc.per_probe;
+  select_probe_volume(probe);
   return true;
 }
 

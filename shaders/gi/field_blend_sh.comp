@@ -21,6 +21,7 @@ void main() {
   const uint slot = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
   if (slot >= pc.count) return;  // the whole workgroup
   const uint probe = probe_list[(pc.list_start + slot) % pc.list_size];
+  select_probe_volume(probe);
   const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
   const uint first = probe * rays_per_probe_total() + field.fixed_rays;
   const uint n = field.rays_per_probe;

@@ -44,11 +44,11 @@ vec3 direct_light(Surface s, uint mode, uint samples, vec3 to_viewer, bool add_s
   bool from_field = mode == kDirectShadowField || mode == kDirectAmbientOcclusion;
   uint kept = 0u;
   bool overflow_traced = true;
-  ShadowSample field;
-  field.ao = 1.0;
+  ShadowSample shadowing;
+  shadowing.ao = 1.0;
 #ifdef DDGI_SHADOW_FIELD_SET
   if (from_field) {
-    field = sample_shadow_field(s.position, s.normal, to_viewer);
+    shadowing = sample_shadow_field(s.position, s.normal, to_viewer);
     kept = shadow.light_count;
     overflow_traced = (shadow.flags & kShadowOverflowTraced) != 0u;
   }
@@ -66,7 +66,7 @@ vec3 direct_light(Surface s, uint mode, uint samples, vec3 to_viewer, bool add_s
     if (all(equal(ls.irradiance, vec3(0.0)))) continue;
     float visibility = 1.0;
     if (from_field && i < kept) {
-      visibility = shadow_sample_light(field, i);
+      visibility = shadow_sample_light(shadowing, i);
     } else if (!from_field || overflow_traced) {
       visibility = traced_visibility(s.position, s.geometric_normal, light,
                                      from_field ? 1u : samples, rng);
@@ -77,7 +77,7 @@ vec3 direct_light(Surface s, uint mode, uint samples, vec3 to_viewer, bool add_s
   if (from_field && mode == kDirectAmbientOcclusion && add_sky) {
     // The sky's cosine-weighted mean radiance, exact for a constant colour; a map is read along
     // the normal. Reflected: albedo x open fraction x that mean (see field_data.h's convention).
-    result += s.albedo * field.ao * environment_radiance(s.normal);
+    result += s.albedo * shadowing.ao * environment_radiance(s.normal);
   }
   return sanitize_radiance(result);
 }

@@ -20,12 +20,12 @@ void main() {
   const uint id = linear_invocation(pc.row_width);
   if (id >= pc.count) return;
   const ShadowQuery q = queries[id];
-  const ShadowSample field = sample_shadow_field(q.position, q.normal, q.to_viewer);
+  const ShadowSample shadowing = sample_shadow_field(q.position, q.normal, q.to_viewer);
 
   ShadowAnswer a;
-  a.field_visibility = field.visibility;
-  a.field_ao = field.ao;
-  a.weight_sum = field.weight_sum;
+  a.field_visibility = shadowing.visibility;
+  a.field_ao = shadowing.ao;
+  a.weight_sum = shadowing.weight_sum;
   a.pad0 = 0.0;
   Rng rng = rng_seed(id, q.seed, 0x2545f491u);
   const uint lights = min(scene.light_count, kShadowMaxLights);

@@ -29,16 +29,17 @@ float sphere_hit(vec3 o, vec3 d, vec3 c, float r, float tmax) {
   return t > 0.0 && t < tmax ? t : tmax;
 }
 
-// Walks the grid cells the ray crosses (3D-DDA) and tests the 8 probes around each; probes
-// stay within half a cell of their grid point, so a sphere is always found from its cells.
-vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
+// The nearest probe sphere of the selected volume the ray hits before best_t, if any: walks the
+// grid cells the ray crosses (3D-DDA) and tests the 8 probes around each; probes stay within
+// half a cell of their grid point, so a sphere is always found from its cells.
+void nearest_volume_probe(vec3 o, vec3 d, inout float best_t, inout uint best_probe) {
   const vec3 lo = field.origin - field.spacing;
   const vec3 hi = field.origin + field.spacing * vec3(field.counts);
   const vec3 inv = 1.0 / d;
   const vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
   const float enter = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
-  const float leave = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), scene_t));
-  if (enter >= leave) return background;
+  const float leave = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), best_t));
+  if (enter >= leave) return;
 
   vec3 p = o + d * enter;
   ivec3 cell = ivec3(floor((p - field.origin) / field.spacing));
@@ -46,8 +47,7 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
   const vec3 next_boundary = field.origin + field.spacing * (vec3(cell) + max(vec3(step_dir), 0.0));
   vec3 t_max = enter + (next_boundary - p) * inv;
   const vec3 t_delta = abs(field.spacing * inv);
-  float best_t = scene_t;
-  uint best_probe = 0xFFFFFFFFu;
+  const uint found_before = best_probe;
   for (int i = 0; i < 4 * (field.counts.x + field.counts.y + field.counts.z) + 8; ++i) {
     for (uint c = 0u; c < 8u; ++c) {
       const ivec3 coord = cell + ivec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u);
@@ -60,7 +60,7 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
       }
     }
     const float t_next = min(t_max.x, min(t_max.y, t_max.z));
-    if (best_probe != 0xFFFFFFFFu && best_t <= t_next) break;  // nothing nearer further on
+    if (best_probe != found_before && best_t <= t_next) break;  // nothing nearer further on
     if (t_next > leave) break;
     if (t_max.x <= t_max.y && t_max.x <= t_max.z) {
       cell.x += step_dir.x;
@@ -73,7 +73,18 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
       t_max.z += t_delta.z;
     }
   }
+}
+
+// Every volume's probes as spheres.
+vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
+  float best_t = scene_t;
+  uint best_probe = 0xFFFFFFFFu;
+  for (uint v = 0u; v < volumes[0].volume_count; ++v) {
+    field_volume = v;
+    nearest_volume_probe(o, d, best_t, best_probe);
+  }
   if (best_probe == 0xFFFFFFFFu) return background;
+  select_probe_volume(best_probe);
   const vec3 n = normalize(o + d * best_t - probe_position(best_probe));
   const vec3 irradiance = probe_irradiance(best_probe, n);
   const vec3 state_colors[4] = vec3[4](vec3(0.1, 0.9, 0.1), vec3(0.9, 0.8, 0.1),

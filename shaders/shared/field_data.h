@@ -123,7 +123,23 @@ struct FieldConstants {
   // coordinate c (from origin) lives in the slot of coordinate (c + scroll) mod counts, each
   // axis in [0, counts). Zero for a field that never scrolled.
   ivec3 scroll;
+  // --- Volumes (docs/cascades.md): a field is one or more grids ("volumes"), whose probes are
+  // numbered one after another (the slots of one set of arrays and atlases); every volume has
+  // its own constants (FieldBlock holds one per volume, finest first). The fields above that are
+  // not the grid's (rays, texels, blending, sampling) are the same in every volume's.
+  uint first_probe;   // the volume's first slot
+  uint volume_count;  // volumes of the field (the same in every volume's constants)
+  // Where this volume's weight in a blend across volumes is 1: a box that the weight leaves over
+  // one cell (blend_cell per axis) towards its faces. A tracking volume's box is centred on the
+  // tracked camera (2021 paper sec. 7.3: a plane that leapfrogs does not change any weight).
+  vec3 blend_min;
+  vec3 blend_max;
+  vec3 blend_cell;
+  uint pad0;
 };
+
+// At most this many volumes per field (cascades).
+DDGI_CONST uint kMaxFieldVolumes = 8u;
 
 // What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
 DDGI_CONST uint kProbeModeRelocate = 0u;  // move probes out of geometry and off front faces
@@ -184,7 +200,7 @@ static_assert(offsetof(ProbeSurfel, emission) == 32);
 static_assert(offsetof(ProbeSurfel, flags) == 44);
 static_assert(offsetof(ProbeSurfel, geometric_normal_oct) == 48);
 
-static_assert(sizeof(FieldConstants) == 240);
+static_assert(sizeof(FieldConstants) == 288);
 static_assert(offsetof(FieldConstants, origin) == 0);
 static_assert(offsetof(FieldConstants, rays_per_probe) == 12);
 static_assert(offsetof(FieldConstants, spacing) == 16);
@@ -220,6 +236,12 @@ static_assert(offsetof(FieldConstants, sh_band1) == 216);
 static_assert(offsetof(FieldConstants, sh_band2) == 220);
 static_assert(offsetof(FieldConstants, probe_bounces) == 224);
 static_assert(offsetof(FieldConstants, scroll) == 228);
+static_assert(offsetof(FieldConstants, first_probe) == 240);
+static_assert(offsetof(FieldConstants, volume_count) == 244);
+static_assert(offsetof(FieldConstants, blend_min) == 248);
+static_assert(offsetof(FieldConstants, blend_max) == 260);
+static_assert(offsetof(FieldConstants, blend_cell) == 272);
+static_assert(offsetof(FieldConstants, pad0) == 284);
 
 static_assert(sizeof(FieldDispatch) == 32);
 static_assert(offsetof(FieldDispatch, count) == 0);

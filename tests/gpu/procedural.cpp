@@ -129,4 +129,27 @@ Scene make_white_furnace_box(float albedo, float emission) {
   return scene;
 }
 
+Scene make_corridor() {
+  Scene scene;
+  scene.source = "procedural corridor";
+  const int white = add_material(scene, {0.725f, 0.71f, 0.68f}, {}, "white");
+  const int red = add_material(scene, {0.63f, 0.065f, 0.05f}, {}, "red");
+  const int green = add_material(scene, {0.14f, 0.45f, 0.091f}, {}, "green");
+  // Inward-facing.
+  add_quad(scene, {-3, 0, 1}, {3, 0, 1}, {3, 0, -1}, {-3, 0, -1}, white);    // floor
+  add_quad(scene, {-3, 2, -1}, {3, 2, -1}, {3, 2, 1}, {-3, 2, 1}, white);    // ceiling
+  add_quad(scene, {-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}, red);    // back
+  add_quad(scene, {3, 0, 1}, {-3, 0, 1}, {-3, 2, 1}, {3, 2, 1}, green);      // front
+  add_quad(scene, {-3, 0, 1}, {-3, 0, -1}, {-3, 2, -1}, {-3, 2, 1}, white);  // left end
+  add_quad(scene, {3, 0, -1}, {3, 0, 1}, {3, 2, 1}, {3, 2, -1}, white);      // right end
+  for (float x : {-2.0f, 0.0f, 2.0f}) {
+    Light light;
+    light.type = LightType::kPoint;
+    light.position = {x, 1.9f, 0.0f};
+    light.intensity = 2.0f;
+    scene.lights.push_back(light);
+  }
+  return scene;
+}
+
 }  // namespace ddgi::test

@@ -24,6 +24,11 @@ int add_box(Scene& scene, const glm::mat4& transform, int material);
 // right walls, a tall and a short box, a point light under the ceiling, camera in front.
 Scene make_cornell_box();
 
+// A corridor 6 m long (x in [-3, 3]), 2 m wide (z) and high (y), closed, red and green side
+// walls, lit by three point lights under its ceiling at x = -2, 0, 2: long enough for a camera
+// to travel through a field smaller than it, plain enough that the view changes smoothly.
+Scene make_corridor();
+
 // Scales a scene uniformly about the origin: instances, lights (point/spot intensity by s^2,
 // so irradiance at corresponding points is unchanged), cameras. Physics says every radiance
 // stays the same.

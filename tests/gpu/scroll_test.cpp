@@ -22,6 +22,10 @@ namespace {
 
 class ScrollTest : public GpuTest {};
 
+float luma(glm::vec3 c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
 // The texels of probe `slot`'s tile in an atlas read back by the field.
 std::vector<float> tile(const IrradianceField::AtlasImage& atlas, uint32_t slot, uint32_t tile_side,
                         uint32_t tiles_per_row) {
@@ -77,7 +81,7 @@ TEST_F(ScrollTest, KeptProbesKeepTheirHistoryBitForBitAndEnteringPlanesStartOver
   ASSERT_TRUE(irradiance_before.ok() && distance_before.ok() && states_before.ok() &&
               answers_before.ok());
 
-  ASSERT_TRUE(field.scroll({2, 0, 0}).ok());
+  ASSERT_TRUE(field.scroll(0, {2, 0, 0}).ok());
   EXPECT_EQ(field.params().origin, glm::vec3(-0.375f, 0.25f, -0.75f));
   EXPECT_EQ(field.scroll_phase(), glm::ivec3(2, 0, 0));
   auto irradiance_after = field.read_irradiance_atlas();
@@ -173,51 +177,36 @@ double mean_abs_difference(const std::vector<float>& a, const std::vector<float>
   return sum / double(a.size() / 4 * 3);
 }
 
-// A corridor 6 m long (x), 2 m wide and high, red and green side walls, lit by three point
-// lights under its ceiling: long enough for a camera to travel through a field smaller than it,
-// plain enough that the view changes smoothly as it does.
-Scene corridor() {
-  Scene scene;
-  scene.source = "procedural corridor";
-  const int white = add_material(scene, {0.725f, 0.71f, 0.68f}, {}, "white");
-  const int red = add_material(scene, {0.63f, 0.065f, 0.05f}, {}, "red");
-  const int green = add_material(scene, {0.14f, 0.45f, 0.091f}, {}, "green");
-  // Inward-facing.
-  add_quad(scene, {-3, 0, 1}, {3, 0, 1}, {3, 0, -1}, {-3, 0, -1}, white);    // floor
-  add_quad(scene, {-3, 2, -1}, {3, 2, -1}, {3, 2, 1}, {-3, 2, 1}, white);    // ceiling
-  add_quad(scene, {-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}, red);    // back
-  add_quad(scene, {3, 0, 1}, {-3, 0, 1}, {-3, 2, 1}, {3, 2, 1}, green);      // front
-  add_quad(scene, {-3, 0, 1}, {-3, 0, -1}, {-3, 2, -1}, {-3, 2, 1}, white);  // left end
-  add_quad(scene, {3, 0, -1}, {3, 0, 1}, {3, 2, 1}, {3, 2, -1}, white);      // right end
-  for (float x : {-2.0f, 0.0f, 2.0f}) {
-    Light light;
-    light.type = LightType::kPoint;
-    light.position = {x, 1.9f, 0.0f};
-    light.intensity = 2.0f;
-    scene.lights.push_back(light);
-  }
-  return scene;
-}
-
 // A camera 1.2 m over the corridor's floor looking down, moving 0.9 m along x in 2.5 cm
 // steps, one field update per frame, with a tracking field of 8 x 10 x 6 probes 0.25 m apart
 // around it (the floor it sees, +-0.32 m around it, stays well inside). `refit`: the control,
 // a grid re-placed (history dropped) instead of scrolled at each cell crossing.
-PathChanges camera_path_changes(bool refit) {
-  Scene scene = corridor();
-  Camera camera;
-  camera.position = {-0.45f, 1.2f, 0.0f};
-  camera.forward = {0.0f, -1.0f, 0.0f};
-  camera.up = {0.0f, 0.0f, -1.0f};
-  camera.yfov = glm::radians(30.0f);
-  IrradianceFieldParams p;
+struct CameraPath {
+  float height = 1.2f;  // of the camera over the floor
+  float fov_degrees = 30.0f;
+  IrradianceFieldParams field;  // placed around the camera's start by the caller
+};
+
+CameraPath single_window_path() {
+  CameraPath path;
+  IrradianceFieldParams& p = path.field;
   p.spacing = glm::vec3(0.25f);
   p.counts = {8, 10, 6};
-  p.origin = {camera.position.x - 0.875f, -0.125f, -0.625f};  // centred but for y (0.2 m off)
+  p.origin = {-0.45f - 0.875f, -0.125f, -0.625f};  // centred on the camera but for y (0.2 m off)
   p.track_camera = true;
   p.rays_per_probe = 64;
   p.fixed_rays = 32;
-  FieldSetup s = make_field_setup(scene, p);
+  return path;
+}
+
+PathChanges camera_path_changes(const CameraPath& path, bool refit) {
+  Scene scene = make_corridor();
+  Camera camera;
+  camera.position = {-0.45f, path.height, 0.0f};
+  camera.forward = {0.0f, -1.0f, 0.0f};
+  camera.up = {0.0f, 0.0f, -1.0f};
+  camera.yfov = glm::radians(path.fov_degrees);
+  FieldSetup s = make_field_setup(scene, path.field);
   PathChanges changes;
   if (!s.field) return changes;
   IrradianceField& field = *s.field;
@@ -234,15 +223,14 @@ PathChanges camera_path_changes(bool refit) {
   for (int frame = 0; frame <= 36; ++frame) {
     camera.position.x = -0.45f + 0.025f * float(frame);
     settings.camera = camera;
-    const glm::ivec3 cells = field.tracking_scroll(camera.position);
-    const bool scrolled = cells != glm::ivec3(0);
+    const bool scrolled = field.tracking_would_scroll(camera.position);
     if (scrolled && refit) {
       IrradianceFieldParams moved = field.params();
-      moved.origin += glm::vec3(cells) * moved.spacing;
+      moved.origin +=
+          glm::vec3(tracking_scroll(field.volumes()[0], camera.position)) * moved.spacing;
       EXPECT_TRUE(field.set_params(moved).ok());
-    } else if (scrolled) {
-      EXPECT_TRUE(field.scroll(cells).ok());
     }
+    EXPECT_TRUE(field.track(camera.position).ok());
     auto image = render_updated(**renderer, settings, s.field);
     EXPECT_TRUE(image.ok()) << image.error().message;
     if (!image.ok()) return {};
@@ -264,8 +252,8 @@ PathChanges camera_path_changes(bool refit) {
 // linear RGB): scrolled 0.0077 at scrolls / 0.016 ordinary; re-placed 0.199 / 0.033. Planted
 // fault (the phase not advanced): 0.035 / 0.016, fails.
 TEST_F(ScrollTest, TrackingFieldShowsNoPopWhenItScrolls) {
-  const PathChanges scrolled = camera_path_changes(false);
-  const PathChanges refitted = camera_path_changes(true);
+  const PathChanges scrolled = camera_path_changes(single_window_path(), false);
+  const PathChanges refitted = camera_path_changes(single_window_path(), true);
   ASSERT_EQ(scrolled.at_scroll.size(), 3u);  // 0.9 m at 0.25 m cells: three scrolls
   ASSERT_EQ(refitted.at_scroll.size(), 3u);
   std::printf(
@@ -277,10 +265,113 @@ TEST_F(ScrollTest, TrackingFieldShowsNoPopWhenItScrolls) {
   EXPECT_GT(PathChanges::max(refitted.at_scroll), 3.0 * PathChanges::max(refitted.ordinary));
 }
 
+// Cascades: two tracking volumes of 8x8x8 probes, 0.2 m and 0.4 m apart, around a camera 0.35 m
+// over the corridor's floor looking down (60 degrees: it sees +-0.2 m of floor, where the fine
+// volume's weight is about 3/4 and the coarse one takes the rest).
+CameraPath cascade_path() {
+  CameraPath path;
+  path.height = 0.35f;
+  path.fov_degrees = 60.0f;
+  IrradianceFieldParams& p = path.field;
+  p.spacing = glm::vec3(0.2f);
+  p.counts = {8, 8, 8};
+  p.cascades = 2;
+  p.cascade_spacing_ratio = 2.0f;
+  p.origin = glm::vec3(-0.45f, 0.35f, 0.0f) - glm::vec3(0.7f);  // centred on the camera
+  p.track_camera = true;
+  p.rays_per_probe = 64;
+  p.fixed_rays = 32;
+  return path;
+}
+
+// No pops with cascades: along the same path the fine volume scrolls every 0.2 m and the coarse
+// one every 0.4 m, and the frames where either scrolls change no more than the others. The blend
+// boxes are centred on the camera (2021 paper sec. 7.3), so a plane that leapfrogs changes no
+// weight, and the entering planes lie where the weight is 0.
+TEST_F(ScrollTest, TrackingCascadesShowNoPopWhenTheyScroll) {
+  const PathChanges changes = camera_path_changes(cascade_path(), false);
+  ASSERT_GE(changes.at_scroll.size(), 3u);
+  ASSERT_FALSE(changes.ordinary.empty());
+  std::printf("cascades: %zu scroll frames, max change there %.4g, max between others %.4g\n",
+              changes.at_scroll.size(), PathChanges::max(changes.at_scroll),
+              PathChanges::max(changes.ordinary));
+  EXPECT_LE(PathChanges::max(changes.at_scroll), 1.1 * PathChanges::max(changes.ordinary));
+}
+
+// Each cascade of a tracking field scrolls on its own cell: 0.65 m along x moves the 0.2 m volume
+// 3 cells and the 0.4 m volume 1 (each ends within a cell of the camera). The volumes start
+// around one centre, coarser by the ratio each, their probes one after another.
+TEST_F(ScrollTest, EachCascadeScrollsOnItsOwnCells) {
+  IrradianceFieldParams p;
+  p.spacing = glm::vec3(0.2f);
+  p.counts = {4, 4, 4};
+  p.origin = glm::vec3(0.0f, 1.0f, 0.0f) - glm::vec3(0.3f);
+  p.cascades = 3;
+  p.cascade_spacing_ratio = 2.0f;
+  p.track_camera = true;
+  p.rays_per_probe = 16;
+  p.fixed_rays = 8;
+  FieldSetup s = make_field_setup(make_corridor(), p);
+  ASSERT_TRUE(s.field);
+  const std::vector<FieldVolume> start = s.field->volumes();
+  ASSERT_EQ(start.size(), 3u);
+  for (uint32_t v = 0; v < 3; ++v) {
+    const float spacing = 0.2f * float(1 << v);
+    EXPECT_EQ(start[v].spacing, glm::vec3(spacing));
+    EXPECT_EQ(start[v].first_probe, 64u * v);
+    const glm::vec3 centre = start[v].origin + 1.5f * start[v].spacing;
+    EXPECT_LT(glm::length(centre - glm::vec3(0.0f, 1.0f, 0.0f)), 1e-5f) << "volume " << v;
+  }
+  ASSERT_TRUE(s.field->track({0.65f, 1.0f, 0.0f}).ok());
+  const std::vector<FieldVolume> moved = s.field->volumes();
+  EXPECT_NEAR(moved[0].origin.x - start[0].origin.x, 0.6f, 1e-5f);
+  EXPECT_NEAR(moved[1].origin.x - start[1].origin.x, 0.4f, 1e-5f);
+  EXPECT_NEAR(moved[2].origin.x - start[2].origin.x, 0.0f, 1e-5f);  // 0.65 < its 0.8 m cell
+  EXPECT_EQ(s.field->scroll_phase(0), glm::ivec3(3, 0, 0));
+  EXPECT_EQ(s.field->scroll_phase(1), glm::ivec3(1, 0, 0));
+  EXPECT_EQ(s.field->scroll_phase(2), glm::ivec3(0, 0, 0));
+  EXPECT_EQ(s.field->params().origin, moved[0].origin);
+}
+
+// Static cascades (three volumes of 8x8x8 probes, 0.2 / 0.4 / 0.8 m apart, around (0, 0.7, 0))
+// queried along a 5 m line through their borders: the blend is seamless (no step between
+// neighbouring points 1 cm apart larger than a stated fraction of the value) where a hard switch
+// between volumes steps at each border.
+TEST_F(ScrollTest, CascadesBlendWithoutSeams) {
+  IrradianceFieldParams p;
+  p.spacing = glm::vec3(0.2f);
+  p.counts = {8, 8, 8};
+  p.origin = glm::vec3(0.0f, 0.5f, 0.0f) - glm::vec3(0.7f);
+  p.cascades = 3;
+  p.rays_per_probe = 64;
+  p.fixed_rays = 32;
+  FieldSetup s = make_field_setup(make_corridor(), p);
+  ASSERT_TRUE(s.field);
+  ASSERT_TRUE(s.field->warm_up(24, DirectMode::kTracedShadows).ok());
+  std::vector<IrradianceQuery> line;
+  for (int i = 0; i <= 1500; ++i) {
+    line.push_back({{-1.5f + 0.002f * float(i), 0.001f, 0.05f}, {0, 1, 0}, {0, 1, 0}});
+  }
+  auto values = s.field->query(line);
+  ASSERT_TRUE(values.ok());
+  double worst = 0.0, mean = 0.0;
+  size_t worst_at = 0;
+  for (size_t i = 0; i < values->size(); ++i) mean += double(luma((*values)[i]));
+  mean /= double(values->size());
+  for (size_t i = 1; i < values->size(); ++i) {
+    const double step = std::abs(double(luma((*values)[i]) - luma((*values)[i - 1])));
+    if (step > worst) worst = step, worst_at = i;
+  }
+  std::printf("cascade blend along x: mean %.4g, largest 2 mm step %.4g (%.2f%%) at x = %.3f\n",
+              mean, worst, 100.0 * worst / mean, line[worst_at].position.x);
+  EXPECT_GT(mean, 0.01);
+  EXPECT_LT(worst / mean, 0.02);
+}
+
 // The cells a tracking grid scrolls: none while the camera is within a cell of the centre on
 // every axis, whole cells towards it beyond (truncated, so it ends within a cell again).
 TEST(TrackingScroll, MovesWholeCellsOnlyWhenTheCameraIsACellFromTheCentre) {
-  IrradianceFieldParams p;
+  FieldVolume p;
   p.origin = {0.0f, 0.0f, 0.0f};
   p.spacing = {0.5f, 1.0f, 2.0f};
   p.counts = {5, 5, 4};  // centre (1, 2, 3)
