@@ -3,7 +3,9 @@
 // Inspection views of the irradiance field, drawn over the frame:
 //  probes: every probe as a sphere, shaded by the irradiance it stores in the direction of the
 //          sphere's normal (so a probe's sphere is a small picture of what it sees), with a rim
-//          coloured by its state: green vigilant, yellow awake, blue sleeping, red off;
+//          coloured by its state: green vigilant, yellow awake, blue sleeping, red off, and in
+//          a field of several volumes a ring inside the rim coloured by its volume (magenta,
+//          cyan, orange, white, ... finest first);
 //  atlas:  the irradiance atlas (decoded) over the top half, the mean-distance atlas
 //          (normalised to the visibility range) over the bottom half.
 #extension GL_EXT_scalar_block_layout : require
@@ -89,7 +91,15 @@ vec3 probe_view(vec3 o, vec3 d, float scene_t, vec3 background) {
   const vec3 irradiance = probe_irradiance(best_probe, n);
   const vec3 state_colors[4] = vec3[4](vec3(0.1, 0.9, 0.1), vec3(0.9, 0.8, 0.1),
                                        vec3(0.2, 0.4, 1.0), vec3(0.9, 0.1, 0.1));
-  const float rim = smoothstep(0.35, 0.1, abs(dot(n, d)));
+  const float facing = abs(dot(n, d));
+  // A field of several volumes rings each sphere inside its rim with its volume's colour.
+  const vec3 volume_colors[kMaxFieldVolumes] = vec3[kMaxFieldVolumes](
+      vec3(0.9, 0.2, 0.9), vec3(0.1, 0.9, 0.9), vec3(1.0, 0.5, 0.0), vec3(1.0, 1.0, 1.0),
+      vec3(0.5, 0.2, 1.0), vec3(0.0, 0.5, 0.5), vec3(1.0, 0.6, 0.7), vec3(0.5, 0.5, 0.0));
+  if (volumes[0].volume_count > 1u && facing > 0.35 && facing < 0.5) {
+    return volume_colors[field_volume];
+  }
+  const float rim = smoothstep(0.35, 0.1, facing);
   return mix(irradiance, state_colors[min(probe_state(best_probe), 3u)], rim);
 }
 

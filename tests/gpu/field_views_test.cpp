@@ -172,6 +172,44 @@ TEST_F(FieldViewsTest, ProbesViewDrawsEachProbeWithItsStateColour) {
 // The atlas view at the atlas's own resolution samples each texel at its centre: the top half
 // is the decoded irradiance atlas (encoded^gamma), the bottom half the mean distance over the
 // visibility range 1.5 |spacing| (field_data.h), texel for texel.
+// A field of two cascades (the second twice as coarse, around the same centre) rings each probe
+// with its volume's colour: both colours are drawn, on as many spheres as each volume shows;
+// a single grid draws neither (control).
+TEST_F(FieldViewsTest, ProbesViewColoursProbesByVolume) {
+  const Scene scene = open_cube_scene();
+  const glm::vec3 kVolumeColours[2] = {chromaticity({0.9f, 0.2f, 0.9f}),
+                                       chromaticity({0.1f, 0.9f, 0.9f})};
+  for (uint32_t cascades : {2u, 1u}) {
+    IrradianceFieldParams params;
+    params.origin = {-1.0f, -1.0f, -1.0f};
+    params.spacing = glm::vec3(1.0f);
+    params.counts = {3, 3, 3};
+    params.cascades = cascades;
+    params.rays_per_probe = 16;
+    params.fixed_rays = 16;
+    Setup s = make(scene, params);
+    ASSERT_TRUE(s.renderer);
+    ASSERT_TRUE(s.field->update(1, DirectMode::kTracedShadows).ok());
+    const FrameResult frame = render(*s.renderer, View::kProbes, scene.cameras[0], 256, 192);
+    std::array<size_t, 2> pixels{};
+    for (size_t i = 0; i < frame.radiance.size(); i += 4) {
+      const glm::vec3 c(frame.radiance[i], frame.radiance[i + 1], frame.radiance[i + 2]);
+      if (std::max({c.x, c.y, c.z}) <= 0.0f) continue;
+      for (size_t v = 0; v < 2; ++v) {
+        if (glm::length(chromaticity(c) - kVolumeColours[v]) < 1e-3f) ++pixels[v];
+      }
+    }
+    std::printf("cascades=%u: %zu pixels in volume 0's colour, %zu in volume 1's\n", cascades,
+                pixels[0], pixels[1]);
+    if (cascades == 1) {
+      EXPECT_EQ(pixels[0] + pixels[1], 0u);
+    } else {
+      EXPECT_GT(pixels[0], 20u);
+      EXPECT_GT(pixels[1], 20u);
+    }
+  }
+}
+
 TEST_F(FieldViewsTest, AtlasViewShowsBothAtlasesTexelForTexel) {
   Scene scene = make_cornell_box();
   IrradianceFieldParams params;

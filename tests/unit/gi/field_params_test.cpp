@@ -134,6 +134,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"spacing", "0.25,0.5,0.75"},
       {"counts", "3,5,7"},
       {"track_camera", "true"},
+      {"cascades", "3"},
+      {"cascade_spacing_ratio", "2.5"},
       {"rays_per_probe", "64"},
       {"fixed_rays", "16"},
       {"max_ray_distance", "100"},
@@ -167,6 +169,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.spacing = {0.25f, 0.5f, 0.75f};
   expected.counts = {3, 5, 7};
   expected.track_camera = true;
+  expected.cascades = 3;
+  expected.cascade_spacing_ratio = 2.5f;
   expected.rays_per_probe = 64;
   expected.fixed_rays = 16;
   expected.max_ray_distance = 100.0f;
