@@ -461,6 +461,108 @@ def box_on_floor():
                            "the cube's footprint; beyond the cube: x in [0.5, 11/6], |z| <= 5/6"})
 
 
+STREET_HALF_LENGTH = 200.0   # the street runs along x in [-200, 200]
+STREET_HALF_WIDTH = 6.0      # facades at z = +-6
+BUILDING_DEPTH = 10.0
+BUILDING_WIDTH = 16.0
+BUILDING_GAP = 4.0
+BUILDING_WALL = 0.3
+STREET_DOOR_W, STREET_DOOR_H = 2.0, 3.0
+PLASTER = [(0.75, 0.70, 0.62), (0.62, 0.66, 0.70), (0.78, 0.60, 0.50), (0.55, 0.62, 0.52)]
+
+
+def street_building(x0, side, height):
+    """A hollow building of one hall, its facade on the street (z = side * 6) with an open
+    doorway in its middle; walls and roof BUILDING_WALL thick, closed surfaces facing out (the
+    hall's faces face into it). side: +1 north of the street, -1 south."""
+    t = BUILDING_WALL
+    x1 = x0 + BUILDING_WIDTH
+    xc = (x0 + x1) / 2.0
+    near, far = side * STREET_HALF_WIDTH, side * (STREET_HALF_WIDTH + BUILDING_DEPTH)
+    zs = sorted([near, near + side * t, far - side * t, far])
+    street_k = 0 if side > 0 else 2  # the cell layer of the street wall
+    grid = [[x0, x0 + t, xc - STREET_DOOR_W / 2, xc + STREET_DOOR_W / 2, x1 - t, x1],
+            [0.0, STREET_DOOR_H, height - t, height], zs]
+
+    def filled(i, j, k):
+        hall = 1 <= i <= 3 and j <= 1 and k == 1
+        doorway = i == 2 and j == 0 and k == street_k
+        return not hall and not doorway
+
+    return cell_faces(grid, filled)[None]
+
+
+def street():
+    """A street 400 m long between two rows of 20 buildings each (8-20 m high, 16 m wide, 4 m
+    apart), every one a hall with an open doorway on the street; neon signs over every fifth
+    door. The sun and the sky come from street.ddgi.json. A scene larger than any one probe grid
+    of room-scale spacing can cover (docs/cascades.md)."""
+    g = Gltf("street")
+    g.material("asphalt", (0.25, 0.25, 0.25))
+    for n, colour in enumerate(PLASTER):
+        g.material("plaster_%d" % n, colour)
+    g.material("neon_warm", (0.8, 0.8, 0.8), emissive=(1.0, 0.45, 0.15))
+    g.material("neon_cold", (0.8, 0.8, 0.8), emissive=(0.2, 0.6, 1.0))
+    ground = MeshData()
+    extent = STREET_HALF_WIDTH + BUILDING_DEPTH + 4.0
+    ground.rect(1, 0.0, (-STREET_HALF_LENGTH, 0.0, -extent), (STREET_HALF_LENGTH, 0.0, extent), 1)
+    g.mesh_node("ground", [(ground, "asphalt")])
+    pitch = BUILDING_WIDTH + BUILDING_GAP
+    count = int(2 * STREET_HALF_LENGTH / pitch)
+    signs = 0
+    for side in (1, -1):
+        for b in range(count):
+            x0 = -STREET_HALF_LENGTH + BUILDING_GAP / 2 + b * pitch
+            height = 8.0 + 4.0 * ((b * 7 + (3 if side > 0 else 0)) % 4)
+            name = "building_%s_%02d" % ("north" if side > 0 else "south", b)
+            g.mesh_node(name, [(street_building(x0, side, height),
+                                "plaster_%d" % ((b + (side > 0)) % len(PLASTER)))])
+            if (b + (2 if side > 0 else 0)) % 5 == 0:
+                # A 4 x 1 m sign 5 cm in front of the facade, over the door, facing the street.
+                xc = x0 + BUILDING_WIDTH / 2
+                z = side * (STREET_HALF_WIDTH - 0.05)
+                sign = MeshData()
+                sign.rect(2, z, (xc - 2.0, 3.6, 0.0), (xc + 2.0, 4.6, 0.0), -side)
+                g.mesh_node("sign_%d" % signs, [(sign, "neon_warm" if signs % 2 else "neon_cold")])
+                signs += 1
+    g.camera("camera", (-180.0, 1.7, 0.0), (-170.0, 1.7, 0.0), 60.0)
+    g.write("street.gltf", {
+        "purpose": "Large-scene test (issue 17): a 400 m street between two rows of halls with "
+                   "open doorways and neon signs; sun and sky in street.ddgi.json; a camera "
+                   "path in street.path.json.",
+        "street": {"x": [-STREET_HALF_LENGTH, STREET_HALF_LENGTH],
+                   "facades_z": [-STREET_HALF_WIDTH, STREET_HALF_WIDTH]},
+        "buildings": 2 * count, "signs": signs})
+    street_path()
+
+
+def street_path():
+    """A walk along the street at eye height, into the hall north of x in [-2, 14] through its
+    doorway and out again, then on: keyframes of position and look-at target, 1.4 m/s."""
+    eye = 1.7
+    door_x = -STREET_HALF_LENGTH + BUILDING_GAP / 2 + 10 * (BUILDING_WIDTH + BUILDING_GAP) + \
+        BUILDING_WIDTH / 2
+    points = [(-180.0, eye, 0.0), (door_x - 6.0, eye, 0.0), (door_x, eye, 3.0),
+              (door_x, eye, STREET_HALF_WIDTH + 4.0), (door_x, eye, 3.0),
+              (door_x + 6.0, eye, 0.0), (180.0, eye, 0.0)]
+    keys, t = [], 0.0
+    for n, p in enumerate(points):
+        if n > 0:
+            t += math.dist(p, points[n - 1]) / 1.4
+        ahead = points[min(n + 1, len(points) - 1)] if n + 1 < len(points) else (p[0] + 10, eye, 0)
+        if ahead == p:
+            ahead = (p[0] + 10.0, eye, p[2])
+        keys.append({"time": round(t, 3), "position": list(p), "target": list(ahead)})
+    path = {"scene": "street.ddgi.json",
+            "description": "A walk along the street at eye height, into a hall and out, 1.4 m/s; "
+                           "position and look-at target are linear between keyframes.",
+            "keyframes": keys}
+    file_name = os.path.join(OUT_DIR, "street.path.json")
+    with open(file_name, "w", encoding="utf-8", newline="\n") as f:
+        f.write(json.dumps(path, indent=1) + "\n")
+    print("%-22s %d keyframes, %.0f s" % ("street.path.json", len(keys), t))
+
+
 def main():
     cornell_box()
     two_rooms(open_door=False)
@@ -468,6 +570,7 @@ def main():
     two_rooms_plane_wall()
     white_box()
     box_on_floor()
+    street()
 
 
 if __name__ == "__main__":

@@ -1,8 +1,20 @@
-# The scroll cost on the GPU (docs/cascades.md): run on the H200 through the device tool, from
-# the repository root with the bundle (deploy/gpu-bundle.sh ddgi-bench ddgi-eval) carried.
+# Scrolling and cascades on the GPU (docs/cascades.md, docs/results/cascades.md): run on the
+# H200 through the device tool, from the repository root, with the bundle
+# (deploy/gpu-bundle.sh ddgi-bench ddgi-eval) and the scenes carried.
 set -e
 [ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
 mkdir -p ../shared && rm -rf ../shared/scenes && ln -s $PWD/.devcarry/scenes ../shared/scenes
-deploy/gpu-run.sh ddgi-bench scenes/cornell_box.gltf scenes/staircase.ddgi.json \
-  scenes/living_room.ddgi.json --grids "32x16x32" --rays 128 --frames 60 --warmup 16 \
-  --scroll-every 4 --backend pipeline 2>&1 | tee $OUT/scroll-bench.txt
+B="deploy/gpu-run.sh ddgi-bench"
+# 1. The field at ray cost after the volumes change (compare docs/results/field-at-ray-cost.md,
+#    run 2, thesis setup).
+$B scenes/staircase.ddgi.json scenes/veach_ajar.ddgi.json --grids 32x16x32 --rays 64,256 \
+  --paths fused --frames 20 --warmup 8 --backend pipeline --field distance_texels=8 \
+  --field fixed_rays=0 --field classification=false --field relocation_iterations=0 \
+  2>&1 | tee $OUT/ray-cost.txt
+# 2. What a scroll costs (service defaults: relocation and classification of the entering plane).
+$B scenes/cornell_box.gltf scenes/staircase.ddgi.json scenes/living_room.ddgi.json \
+  --grids 32x16x32 --rays 128 --frames 60 --warmup 16 --scroll-every 4 --backend pipeline \
+  2>&1 | tee $OUT/scroll.txt
+# 3. Three cascades of the same grid: update cost of 3x the probes.
+$B scenes/staircase.ddgi.json scenes/living_room.ddgi.json --grids 32x16x32 --rays 128 \
+  --frames 20 --warmup 8 --backend pipeline --field cascades=3 2>&1 | tee $OUT/cascades.txt
