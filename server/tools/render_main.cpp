@@ -192,7 +192,9 @@ void log_stack(const RenderJob& job, const Scene& scene, const GiStack& gi) {
   if (const IrradianceField* field = gi.field()) {
     const IrradianceFieldParams& p = field->params();
     LOG_INFO << "irradiance field: " << p.counts.x << "x" << p.counts.y << "x" << p.counts.z
-             << " probes, " << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
+             << " probes"
+             << (p.cascades > 1 ? " x " + std::to_string(p.cascades) + " cascades" : "") << ", "
+             << p.rays_per_probe << "+" << p.fixed_rays << " rays each, "
              << field->gpu_bytes() / 1024 << " KiB; " << job.warmup << " warm-up updates";
     const ProbeStateCounts counts = field->probe_counts();
     LOG_INFO << "probe states: " << counts.vigilant << " vigilant, " << counts.awake << " awake, "
