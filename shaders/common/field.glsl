@@ -13,10 +13,13 @@
 layout(set = kFieldSet, binding = kFieldBindingConstants, scalar) readonly buffer FieldBlock {
   FieldConstants volumes[];  // one per volume, finest first (field_data.h)
 };
-// `field` is the constants of the volume being worked on: a kernel that handles a probe selects
-// the probe's volume (select_probe_volume), the cross-volume query selects each in turn.
+// `field_grid` is the grid of the volume being worked on (origin, spacing, counts, phase and
+// what scales with them): a kernel that handles a probe selects the probe's volume
+// (select_probe_volume), the cross-volume query selects each in turn. `field` is everything the
+// volumes share, read from volume 0 (a fixed index: loads the compiler can keep uniform).
 uint field_volume = 0u;
-#define field volumes[field_volume]
+#define field_grid volumes[field_volume]
+#define field volumes[0]
 layout(set = kFieldSet, binding = kFieldBindingProbes, scalar) buffer ProbeStates {
   ProbeState probe_states[];
 };
@@ -31,21 +34,28 @@ layout(set = kFieldSet, binding = kFieldBindingSh, scalar) buffer ShProbes {
 // s = p - first_probe = x + counts.x * (y + counts.y * z). The slot of the probe at grid
 // coordinate c is c shifted by the scroll phase, per axis modulo the count (field_data.h): a
 // scrolling volume moves whole planes without moving their data.
+// (c + scroll) mod counts for c and scroll in [0, counts): one compare per axis instead of an
+// integer division (this runs for each of the 8 probes of every field query).
+ivec3 wrap_once(ivec3 c) {
+  return c - field_grid.counts * ivec3(greaterThanEqual(c, field_grid.counts));
+}
+
 ivec3 probe_grid_coord(uint p) {
-  const uint local = p - field.first_probe;
-  const uint x = local % uint(field.counts.x);
-  const uint yz = local / uint(field.counts.x);
-  const ivec3 slot = ivec3(int(x), int(yz % uint(field.counts.y)), int(yz / uint(field.counts.y)));
-  return (slot - field.scroll + field.counts) % field.counts;
+  const uint local = p - field_grid.first_probe;
+  const uint x = local % uint(field_grid.counts.x);
+  const uint yz = local / uint(field_grid.counts.x);
+  const ivec3 slot =
+      ivec3(int(x), int(yz % uint(field_grid.counts.y)), int(yz / uint(field_grid.counts.y)));
+  return wrap_once(slot - field_grid.scroll + field_grid.counts);
 }
 
 uint probe_index(ivec3 c) {
-  const ivec3 slot = (c + field.scroll) % field.counts;
-  return field.first_probe + uint(slot.x) +
-         uint(field.counts.x) * (uint(slot.y) + uint(field.counts.y) * uint(slot.z));
+  const ivec3 slot = wrap_once(c + field_grid.scroll);
+  return field_grid.first_probe + uint(slot.x) +
+         uint(field_grid.counts.x) * (uint(slot.y) + uint(field_grid.counts.y) * uint(slot.z));
 }
 
-// Makes `field` the constants of the volume that owns probe p.
+// Makes `field_grid` the grid of the volume that owns probe p.
 void select_probe_volume(uint p) {
   field_volume = 0u;
   for (uint v = 1u; v < volumes[0].volume_count; ++v) {
@@ -58,7 +68,7 @@ uint probe_state(uint p) {
 }
 
 vec3 probe_position(uint p) {
-  return field.origin + field.spacing * vec3(probe_grid_coord(p)) + probe_states[p].offset;
+  return field_grid.origin + field_grid.spacing * vec3(probe_grid_coord(p)) + probe_states[p].offset;
 }
 
 // --- Ray directions ------------------------------------------------------------------------
@@ -139,13 +149,13 @@ vec3 probe_irradiance(uint p, vec3 n) {
 // --- The cage query -----------------------------------------------------------------------
 // The selected volume's M at `p` (sample_irradiance below blends the volumes).
 vec3 sample_volume_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
-  const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+  const float min_spacing = min(field_grid.spacing.x, min(field_grid.spacing.y, field_grid.spacing.z));
   // 2021 paper, eq. 2: one bias along the normal and the view direction.
   const vec3 bias = (n * 0.2 + to_viewer * 0.8) * (0.75 * min_spacing) * field.self_shadow_bias;
   const vec3 biased = p + bias;
 
-  const ivec3 last = field.counts - 1;
-  const vec3 grid = (biased - field.origin) / field.spacing;
+  const ivec3 last = field_grid.counts - 1;
+  const vec3 grid = (biased - field_grid.origin) / field_grid.spacing;
   const ivec3 base = clamp(ivec3(floor(grid)), ivec3(0), max(last - 1, ivec3(0)));
   const vec3 alpha = clamp(grid - vec3(base), 0.0, 1.0);
 
@@ -190,7 +200,7 @@ vec3 sample_volume_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
 // The selected volume's weight at `p`: 1 inside its blend box, falling linearly to 0 over one
 // cell towards the box's faces (the 2021 paper's volume blending, sec. 7.3).
 float volume_weight(vec3 p) {
-  const vec3 inside = min(p - field.blend_min, field.blend_max - p) / field.blend_cell;
+  const vec3 inside = min(p - field_grid.blend_min, field_grid.blend_max - p) / field_grid.blend_cell;
   return clamp(min(inside.x, min(inside.y, inside.z)) + 1.0, 0.0, 1.0);
 }
 
@@ -200,8 +210,14 @@ float volume_weight(vec3 p) {
 // takes all that is left (so one volume answers everywhere, clamped at its edges, as a single
 // grid does). The selected volume is kept.
 vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
-  const uint selected = field_volume;
   const uint count = volumes[0].volume_count;
+  // One volume (every fitted field): its query alone. Setting the index (0 already) lets the
+  // compiler read the grid at fixed offsets, as before volumes existed (docs/results/cascades.md).
+  if (count == 1u) {
+    field_volume = 0u;
+    return sample_volume_irradiance(p, n, to_viewer);
+  }
+  const uint selected = field_volume;
   vec3 sum = vec3(0.0);
   float left = 1.0;
   for (uint v = 0u; v < count && left > 0.0; ++v) {

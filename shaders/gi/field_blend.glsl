@@ -17,7 +17,7 @@ float max_component(vec3 v) { return max(v.x, max(v.y, v.z)); }
 float blended_ray_distance(float encoded) {
   float d = ray_distance(encoded);
   if (!ray_missed(encoded) && ray_hit_back_face(encoded)) d *= field.backface_distance_scale;
-  return clamp(d, 0.0, field.max_visibility_distance);
+  return clamp(d, 0.0, field_grid.max_visibility_distance);
 }
 
 ivec2 texel_coord(uint probe, uvec2 ij, uint texels) {

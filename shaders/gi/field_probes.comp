@@ -41,19 +41,19 @@ void main() {
   const bool inside = float(backfaces) > field.backface_threshold * float(n);
 
   if (pc.mode == kProbeModeRelocate) {
-    const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+    const float min_spacing = min(field_grid.spacing.x, min(field_grid.spacing.y, field_grid.spacing.z));
     vec3 offset = probe_states[probe].offset;
     if (inside) {
       // Through the closest back face, and a little further so the face is behind us.
       offset += back_direction * (closest_back + 0.05 * min_spacing);
-    } else if (closest_front < field.min_frontface_distance) {
-      offset -= front_direction * (field.min_frontface_distance - closest_front);
+    } else if (closest_front < field_grid.min_frontface_distance) {
+      offset -= front_direction * (field_grid.min_frontface_distance - closest_front);
     }
-    const vec3 limit = field.probe_offset_limit * field.spacing;
+    const vec3 limit = field.probe_offset_limit * field_grid.spacing;
     probe_states[probe].offset = clamp(offset, -limit, limit);
     probe_states[probe].flags |= kProbeResetHistory;  // it moved: its history is elsewhere
   } else {
-    const float reach = length(field.spacing);  // the cage diagonal (thesis eq. 6.2's r)
+    const float reach = length(field_grid.spacing);  // the cage diagonal (thesis eq. 6.2's r)
     const uint state = inside ? kProbeOff
                               : (closest_front <= reach ? kProbeVigilant : kProbeSleeping);
     probe_states[probe].flags =

@@ -25,7 +25,7 @@ void main() {
   // from its own position, so it would be neither moved off it nor switched Off; starting
   // behind, it sees the surface at distance ~0, a front face one way and a back face the other,
   // and relocation lifts it off (or classification turns it Off).
-  const float min_spacing = min(field.spacing.x, min(field.spacing.y, field.spacing.z));
+  const float min_spacing = min(field_grid.spacing.x, min(field_grid.spacing.y, field_grid.spacing.z));
   const float behind = lit ? 0.0 : 1e-3 * min_spacing;
   const Hit hit =
       trace_closest(origin - behind * direction, direction, 0.0, field.max_ray_distance + behind);

@@ -35,8 +35,8 @@ float sphere_hit(vec3 o, vec3 d, vec3 c, float r, float tmax) {
 // grid cells the ray crosses (3D-DDA) and tests the 8 probes around each; probes stay within
 // half a cell of their grid point, so a sphere is always found from its cells.
 void nearest_volume_probe(vec3 o, vec3 d, inout float best_t, inout uint best_probe) {
-  const vec3 lo = field.origin - field.spacing;
-  const vec3 hi = field.origin + field.spacing * vec3(field.counts);
+  const vec3 lo = field_grid.origin - field_grid.spacing;
+  const vec3 hi = field_grid.origin + field_grid.spacing * vec3(field_grid.counts);
   const vec3 inv = 1.0 / d;
   const vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
   const float enter = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
@@ -44,16 +44,16 @@ void nearest_volume_probe(vec3 o, vec3 d, inout float best_t, inout uint best_pr
   if (enter >= leave) return;
 
   vec3 p = o + d * enter;
-  ivec3 cell = ivec3(floor((p - field.origin) / field.spacing));
+  ivec3 cell = ivec3(floor((p - field_grid.origin) / field_grid.spacing));
   const ivec3 step_dir = ivec3(sign(d));
-  const vec3 next_boundary = field.origin + field.spacing * (vec3(cell) + max(vec3(step_dir), 0.0));
+  const vec3 next_boundary = field_grid.origin + field_grid.spacing * (vec3(cell) + max(vec3(step_dir), 0.0));
   vec3 t_max = enter + (next_boundary - p) * inv;
-  const vec3 t_delta = abs(field.spacing * inv);
+  const vec3 t_delta = abs(field_grid.spacing * inv);
   const uint found_before = best_probe;
-  for (int i = 0; i < 4 * (field.counts.x + field.counts.y + field.counts.z) + 8; ++i) {
+  for (int i = 0; i < 4 * (field_grid.counts.x + field_grid.counts.y + field_grid.counts.z) + 8; ++i) {
     for (uint c = 0u; c < 8u; ++c) {
       const ivec3 coord = cell + ivec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u);
-      if (any(lessThan(coord, ivec3(0))) || any(greaterThanEqual(coord, field.counts))) continue;
+      if (any(lessThan(coord, ivec3(0))) || any(greaterThanEqual(coord, field_grid.counts))) continue;
       const uint probe = probe_index(coord);
       const float t = sphere_hit(o, d, probe_position(probe), pc.probe_radius, best_t);
       if (t < best_t) {
@@ -111,7 +111,7 @@ vec3 atlas_view(uvec2 pixel) {
     return pow(max(encoded, vec3(0.0)), vec3(field.irradiance_gamma));
   }
   const vec2 uv = (vec2(pixel) - vec2(0.0, half_height) + 0.5) / vec2(pc.width, half_height);
-  return vec3(textureLod(distance_atlas, uv, 0.0).r / field.max_visibility_distance);
+  return vec3(textureLod(distance_atlas, uv, 0.0).r / field_grid.max_visibility_distance);
 }
 
 void main() {

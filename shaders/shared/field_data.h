@@ -126,7 +126,10 @@ struct FieldConstants {
   // --- Volumes (docs/cascades.md): a field is one or more grids ("volumes"), whose probes are
   // numbered one after another (the slots of one set of arrays and atlases); every volume has
   // its own constants (FieldBlock holds one per volume, finest first). The fields above that are
-  // not the grid's (rays, texels, blending, sampling) are the same in every volume's.
+  // not the grid's (rays, texels, blending, sampling) are the same in every volume's; shaders
+  // read the grid's (`field_grid`: origin, spacing, counts, scroll, first_probe,
+  // max_visibility_distance, min_frontface_distance, blend_*) from the volume they work on and
+  // the rest (`field`) from volume 0.
   uint first_probe;   // the volume's first slot
   uint volume_count;  // volumes of the field (the same in every volume's constants)
   // Where this volume's weight in a blend across volumes is 1: a box that the weight leaves over
