@@ -60,7 +60,7 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.min_frontface_distance != b.min_frontface_distance ||
          a.backface_threshold != b.backface_threshold || a.fixed_rays != b.fixed_rays ||
          a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels ||
-         a.basis != b.basis;
+         a.basis != b.basis || a.cascades != b.cascades;
 }
 
 // Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are freed.
@@ -590,7 +590,10 @@ Status IrradianceField::set_params(const IrradianceFieldParams& params) {
       params_, params, grid_changed(old, params),
       [&](const IrradianceFieldParams& next) { return check_budget(context_, next, gpu_bytes_); },
       [&] { return create_resources(); }));
-  if (old.origin != params.origin || old.spacing != params.spacing) return reset();
+  if (old.origin != params.origin || old.spacing != params.spacing ||
+      old.cascade_spacing_ratio != params.cascade_spacing_ratio) {
+    return reset();  // the volumes are placed anew
+  }
   return ok_status();
 }
 

@@ -331,6 +331,20 @@ TEST_F(ScrollTest, EachCascadeScrollsOnItsOwnCells) {
   EXPECT_EQ(s.field->scroll_phase(1), glm::ivec3(1, 0, 0));
   EXPECT_EQ(s.field->scroll_phase(2), glm::ivec3(0, 0, 0));
   EXPECT_EQ(s.field->params().origin, moved[0].origin);
+
+  // New cascade parameters place the volumes anew and size the field for them (planted fault,
+  // the resources kept: the readback overruns the old buffer and fails).
+  IrradianceFieldParams more = s.field->params();
+  more.cascades = 4;
+  more.cascade_spacing_ratio = 3.0f;
+  ASSERT_TRUE(s.field->set_params(more).ok());
+  const std::vector<FieldVolume> replaced = s.field->volumes();
+  ASSERT_EQ(replaced.size(), 4u);
+  EXPECT_EQ(replaced[1].spacing, glm::vec3(0.2f * 3.0f));
+  EXPECT_EQ(replaced[3].first_probe, 192u);
+  auto states = s.field->read_probe_states();
+  ASSERT_TRUE(states.ok());
+  EXPECT_EQ(states->size(), 256u);
 }
 
 // Static cascades (three volumes of 8x8x8 probes, 0.2 / 0.4 / 0.8 m apart, around (0, 0.7, 0))
