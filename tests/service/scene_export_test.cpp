@@ -48,12 +48,16 @@ float largest_distance(const std::vector<glm::vec3>& a, const std::vector<glm::v
 
 class SceneExportTest : public ServiceTest {
  protected:
+  // Exports of the slow scene below take over a minute in the sanitizer build with the suite
+  // sharded on two cores (CI): calls wait this long.
+  static constexpr double kExportDeadlineSeconds = 240.0;
+
   Scene export_session(const std::string& session, std::string* glb) {
     v1::ExportSceneRequest request;
     request.set_session_id(session);
     v1::SceneMetadata metadata;
     const grpc::Status status = fetch_scene(
-        *stub_, [this] { return context(); }, request, &metadata, glb);
+        *stub_, [this] { return context(kExportDeadlineSeconds); }, request, &metadata, glb);
     EXPECT_TRUE(status.ok()) << status.error_message();
     EXPECT_EQ(metadata.total_bytes(), glb->size());
     auto loaded = load_glb_from_memory(
@@ -186,7 +190,7 @@ TEST_F(SceneExportLimitTest, AtMostTwoExportsAreWrittenAtOnce) {
       v1::SceneMetadata metadata;
       std::string bytes;
       statuses[i] = fetch_scene(
-          *stub_, [this] { return context(); }, call, &metadata, &bytes);
+          *stub_, [this] { return context(kExportDeadlineSeconds); }, call, &metadata, &bytes);
     });
   }
   for (std::thread& client : clients) client.join();
