@@ -16,7 +16,7 @@ layout(set = kFieldSet, binding = kFieldBindingConstants, scalar) readonly buffe
 // `field_grid` is the grid of the volume being worked on (origin, spacing, counts, phase and
 // what scales with them): a kernel that handles a probe selects the probe's volume
 // (select_probe_volume), the cross-volume query selects each in turn. `field` is everything the
-// volumes share, read from volume 0 (a fixed index: loads the compiler can keep uniform).
+// volumes share, the same in each: read from volume 0.
 uint field_volume = 0u;
 #define field_grid volumes[field_volume]
 #define field volumes[0]
@@ -211,12 +211,8 @@ float volume_weight(vec3 p) {
 // grid does). The selected volume is kept.
 vec3 sample_irradiance(vec3 p, vec3 n, vec3 to_viewer) {
   const uint count = volumes[0].volume_count;
-  // One volume (every fitted field): its query alone. Setting the index (0 already) lets the
-  // compiler read the grid at fixed offsets, as before volumes existed (docs/results/cascades.md).
-  if (count == 1u) {
-    field_volume = 0u;
-    return sample_volume_irradiance(p, n, to_viewer);
-  }
+  // One volume (every fitted field): its query alone, without the blend's weights.
+  if (count == 1u) return sample_volume_irradiance(p, n, to_viewer);
   const uint selected = field_volume;
   vec3 sum = vec3(0.0);
   float left = 1.0;
