@@ -18,6 +18,7 @@ namespace ddgi {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::string error_of(const IrradianceFieldParams& p) {
   const Status s = validate(p);
@@ -102,6 +103,17 @@ TEST(FieldParams, AtlasThatWouldNotFitIsRefused) {
   p.distance_texels = 8;
   p.irradiance_texels = 4;
   EXPECT_EQ(error_of(p), "");
+}
+
+// Cascades multiply the probes: past the field's probe limit the refusal names the cascades and
+// the total, before any atlas is sized.
+TEST(FieldParams, CascadesPastTheProbeLimitAreRefused) {
+  IrradianceFieldParams p;
+  p.counts = {256, 128, 64};  // 2,097,152 probes: at most 2 cascades fit 4,194,304
+  p.cascades = 3;
+  EXPECT_THAT(error_of(p), HasSubstr("cascades=3 of 2097152 probes make 6291456 probes"));
+  p.cascades = 1;
+  EXPECT_THAT(error_of(p), Not(HasSubstr("cascades")));
 }
 
 TEST(FieldParams, FittedGridIsCellCentredInsideTheBounds) {
