@@ -23,6 +23,7 @@
 #include "encode/write_image.h"
 #include "rpc/status_code_name.h"
 #include "rpc/web_link.h"
+#include "scene/camera_path.h"
 
 namespace ddgi::client {
 namespace {
@@ -106,6 +107,8 @@ struct StreamOptions {
   std::string out;           // the last frame
   std::string out_dir;       // every frame
   int64_t camera_moves = 0;
+  std::optional<CameraPath> camera_path;  // --camera-path: moves follow it, else turn the camera
+  double path_speed = 1.0;                // seconds of the path per second of the stream
   double move_interval = 0.0;
   int64_t stall_after = -1;  // stop reading after this frame for stall_seconds
   double stall_seconds = 0.0;
@@ -123,19 +126,51 @@ Result<StreamOptions> stream_options(const Flags& flags, v1::StreamFramesRequest
   DDGI_ASSIGN_OR_RETURN(o.out_dir, flags.get_string("out-dir", ""));
   DDGI_ASSIGN_OR_RETURN(o.camera_moves, flags.get_int("camera-moves", 0, 0, 100000));
   DDGI_ASSIGN_OR_RETURN(o.move_interval, flags.get_double("move-interval", 0.5, 0.001, 3600));
+  DDGI_ASSIGN_OR_RETURN(const std::string path_file, flags.get_string("camera-path", ""));
+  if (!path_file.empty()) {
+    DDGI_ASSIGN_OR_RETURN(o.camera_path, read_camera_path(path_file));
+    if (o.camera_moves == 0) return invalid_argument("--camera-path needs --camera-moves N");
+  }
+  DDGI_ASSIGN_OR_RETURN(o.path_speed, flags.get_double("path-speed", 1.0, 1e-3, 1e3));
   DDGI_ASSIGN_OR_RETURN(o.stall_after, flags.get_int("stall-after", -1, -1, 1ll << 40));
   DDGI_ASSIGN_OR_RETURN(o.stall_seconds, flags.get_double("stall-seconds", 0.0, 0.0, 3600));
   return o;
 }
 
-// --camera-moves: SetCamera calls on a thread beside the stream reader, turning the camera of
-// the first frame back and forth. Each move remembers when it was sent, so the reader can time
+// The camera of move `i` (from 0) given the first frame's: turned back and forth by 2 degrees,
+// or the camera path's pose at (i * interval * speed) seconds (the path's field of view kept
+// from the first frame).
+using MoveCamera = std::function<v1::Camera(int64_t i, const v1::Camera& first)>;
+
+MoveCamera move_camera(const StreamOptions& o) {
+  if (!o.camera_path) {
+    return
+        [](int64_t i, const v1::Camera& first) { return yawed(first, (i % 2 == 0) ? 2.0 : 0.0); };
+  }
+  return [path = *o.camera_path, step = o.move_interval * o.path_speed](int64_t i,
+                                                                        const v1::Camera& first) {
+    const CameraPose pose = path.pose_at(double(i) * step);
+    v1::Camera camera;
+    camera.set_vertical_fov_degrees(first.vertical_fov_degrees());
+    auto set = [](v1::Vec3* v, glm::vec3 p) {
+      v->set_x(p.x);
+      v->set_y(p.y);
+      v->set_z(p.z);
+    };
+    set(camera.mutable_position(), pose.position);
+    set(camera.mutable_target(), pose.target);
+    return camera;
+  };
+}
+
+// --camera-moves: SetCamera calls on a thread beside the stream reader, moving the camera of
+// the first frame (move_camera). Each move remembers when it was sent, so the reader can time
 // the first frame that shows it.
 class CameraMover {
  public:
   using SetCamera = std::function<grpc::Status(const v1::SetCameraRequest&, v1::ViewInfo*)>;
-  CameraMover(SetCamera set_camera, int64_t moves, double interval)
-      : set_camera_(std::move(set_camera)) {
+  CameraMover(SetCamera set_camera, MoveCamera next, int64_t moves, double interval)
+      : set_camera_(std::move(set_camera)), next_(std::move(next)) {
     if (moves > 0) thread_ = std::thread([this, moves, interval] { run(moves, interval); });
   }
   ~CameraMover() { finish(); }
@@ -189,7 +224,7 @@ class CameraMover {
       v1::SetCameraRequest move;
       move.set_session_id(initial.session_id());
       move.set_view_id(initial.view_id());
-      *move.mutable_camera() = yawed(initial.camera(), (i % 2 == 0) ? 2.0 : 0.0);
+      *move.mutable_camera() = next_(i, initial.camera());
       v1::ViewInfo reply;
       const auto sent = Clock::now();
       const grpc::Status status = set_camera_(move, &reply);
@@ -203,6 +238,7 @@ class CameraMover {
   }
 
   SetCamera set_camera_;
+  MoveCamera next_;
   std::mutex mutex_;
   std::condition_variable first_frame_;
   std::optional<v1::Frame> first_;
@@ -216,6 +252,7 @@ class CameraMover {
 struct StreamTotals {
   int64_t count = 0;
   double gpu_ms = 0.0;
+  double gi_update_ms = 0.0;
   double encode_ms = 0.0;
   double bytes = 0.0;
   std::vector<double> latencies;  // ms, of the camera moves measured
@@ -307,6 +344,7 @@ Status read_stream(StreamLink& link, const StreamOptions& o, Clock::time_point s
     const auto now = Clock::now();
     ++totals.count;
     totals.gpu_ms += frame.gpu_ms();
+    totals.gi_update_ms += frame.gi_update_ms();
     totals.encode_ms += frame.encode_ms();
     totals.bytes += double(frame.jpeg().size());
     mover.on_frame(frame, now, totals.latencies);
@@ -340,7 +378,10 @@ nlohmann::json stream_summary(const StreamTotals& t, double seconds, int64_t cam
   summary["height"] = t.last.height();
   summary["frames_dropped"] = t.last.frames_dropped();
   summary["last_frame_index"] = t.last.frame_index();
+  const v1::Vec3& at = t.last.camera().position();
+  summary["last_camera_position"] = {at.x(), at.y(), at.z()};
   summary["gpu_ms_mean"] = t.count ? t.gpu_ms / count : 0.0;
+  summary["gi_update_ms_mean"] = t.count ? t.gi_update_ms / count : 0.0;
   summary["encode_ms_mean"] = t.count ? t.encode_ms / count : 0.0;
   summary["jpeg_bytes_mean"] = t.count ? t.bytes / count : 0.0;
   if (camera_moves > 0) {
@@ -368,7 +409,8 @@ int stream(Cli& cli) {
     link = grpc_link(cli, request);
   }
   const auto start = Clock::now();
-  CameraMover mover(link.set_camera, options.camera_moves, options.move_interval);
+  CameraMover mover(link.set_camera, move_camera(options), options.camera_moves,
+                    options.move_interval);
   StreamTotals totals;
   if (Status read = read_stream(link, options, start, mover, totals); !read.ok()) {
     return report(read.error());
@@ -403,21 +445,26 @@ void add_frame_commands(std::vector<CommandSpec>& commands) {
                       {},
                       frame});
   std::vector<std::string> stream_flags = frame_flags;
-  for (const char* name : {"frames", "seconds", "max-fps", "out-dir", "camera-moves",
-                           "move-interval", "stall-after", "stall-seconds", "web"}) {
+  for (const char* name :
+       {"frames", "seconds", "max-fps", "out-dir", "camera-moves", "move-interval", "camera-path",
+        "path-speed", "stall-after", "stall-seconds", "web"}) {
     stream_flags.push_back(name);
   }
-  commands.push_back({"stream",
-                      "--session ID (--view V | settings as frame) [--frames N] [--seconds S] "
-                      "[--max-fps X] [--out LAST.jpg] [--out-dir DIR] [--camera-moves N "
-                      "--move-interval S] [--stall-after N --stall-seconds S] [--web PORT]",
-                      "stream frames; prints fps, drops, GPU/encode times and, with "
-                      "--camera-moves, the latency from a camera command to the first frame "
-                      "showing it; --web: through the server's web front on PORT (the "
-                      "WebSocket a browser uses) instead of gRPC",
-                      stream_flags,
-                      {},
-                      stream});
+  commands.push_back(
+      {"stream",
+       "--session ID (--view V | settings as frame) [--frames N] [--seconds S] "
+       "[--max-fps X] [--out LAST.jpg] [--out-dir DIR] [--camera-moves N "
+       "--move-interval S [--camera-path FILE.path.json --path-speed X]] [--stall-after N "
+       "--stall-seconds S] [--web PORT]",
+       "stream frames; prints fps, drops, GPU/field/encode times and, with "
+       "--camera-moves, the latency from a camera command to the first frame "
+       "showing it (the moves turn the camera by 2 degrees back and forth, or "
+       "follow --camera-path from its start, X path seconds per second); --web: "
+       "through the server's web front on PORT (the WebSocket a browser uses) "
+       "instead of gRPC",
+       stream_flags,
+       {},
+       stream});
 }
 
 }  // namespace ddgi::client

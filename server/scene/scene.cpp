@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include <cmath>
+
 namespace ddgi {
 
 namespace {
@@ -17,6 +19,24 @@ Bounds object_bounds(const Mesh& mesh) {
 }
 
 }  // namespace
+
+Result<Camera> look_at_camera(glm::vec3 position, glm::vec3 target, glm::vec3 up, float yfov) {
+  const glm::vec3 view = target - position;
+  const float distance = glm::length(view);
+  if (!(distance > 1e-6f) || !std::isfinite(distance)) {
+    return invalid_argument("'position' and 'target' must differ (by a finite distance)");
+  }
+  Camera camera;
+  camera.position = position;
+  camera.forward = view / distance;
+  const glm::vec3 orthogonal_up = up - glm::dot(up, camera.forward) * camera.forward;
+  if (!(glm::length(orthogonal_up) > 1e-4f)) {
+    return invalid_argument("'up' must not be parallel to the view direction");
+  }
+  camera.up = glm::normalize(orthogonal_up);
+  camera.yfov = yfov;
+  return camera;
+}
 
 Bounds Scene::world_bounds() const {
   uint64_t instanced_vertices = 0;

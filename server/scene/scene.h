@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/result.h"
+
 namespace ddgi {
 
 struct Texture {
@@ -100,6 +102,10 @@ struct Camera {
   float yfov = 0.8f;                     // radians
   float znear = 1e-3f;                   // rays start here (scene units)
 };
+
+// A camera at `position` looking at `target`, `up` (any length) made orthogonal to the view;
+// fails, saying why, when the two points coincide or `up` is parallel to the view.
+Result<Camera> look_at_camera(glm::vec3 position, glm::vec3 target, glm::vec3 up, float yfov);
 
 struct EnvironmentImage {
   uint32_t width = 0;

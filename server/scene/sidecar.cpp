@@ -6,10 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "scene/exr_image.h"
 #include "scene/finite.h"
+#include "scene/json_fields.h"
 #include "scene/json_precheck.h"
 #include "scene/scene_files.h"
 
@@ -17,109 +16,9 @@ namespace ddgi {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
+using namespace json_fields;
 
 constexpr float kDegrees = static_cast<float>(M_PI / 180.0);
-
-std::string join(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-
-// A short rendering of a bad value for messages.
-std::string shown(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return text;
-}
-
-Error expected(const std::string& path, const std::string& what, const json& got) {
-  return invalid_argument(path + ": expected " + what + ", got " + shown(got));
-}
-
-// The object at `path`, with every key among `allowed`.
-Status check_object(const json& value, const std::string& path,
-                    std::initializer_list<std::string_view> allowed) {
-  if (!value.is_object()) return expected(path.empty() ? "(top level)" : path, "an object", value);
-  for (const auto& [key, unused] : value.items()) {
-    bool known = false;
-    for (std::string_view name : allowed) known = known || key == name;
-    if (!known) {
-      std::string names;
-      for (std::string_view name : allowed)
-        names += (names.empty() ? "" : ", ") + std::string(name);
-      return invalid_argument(join(path, key) + ": unknown key (expected one of: " + names + ")");
-    }
-  }
-  return ok_status();
-}
-
-struct Range {
-  double min = -HUGE_VAL;
-  double max = HUGE_VAL;
-  bool min_open = false;
-  bool max_open = false;
-
-  bool contains(double v) const {
-    return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
-  }
-  std::string text() const {
-    if (min == -HUGE_VAL && max == HUGE_VAL) return "a finite number";
-    if (max == HUGE_VAL)
-      return std::string("a finite number ") + (min_open ? "> " : ">= ") + num(min);
-    return std::string("a number in ") + (min_open ? "(" : "[") + num(min) + ", " + num(max) +
-           (max_open ? ")" : "]");
-  }
-  static std::string num(double v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (s.back() == '.') s.pop_back();
-    return s;
-  }
-};
-
-constexpr Range kAny{};
-constexpr Range kNonNegative{0.0};
-constexpr Range kPositive{0.0, HUGE_VAL, true};
-constexpr Range kUnit{0.0, 1.0};
-
-Result<float> read_number(const json& value, const std::string& path, const Range& range) {
-  if (!value.is_number() || !finite_as_float(value.get<double>()) ||
-      !range.contains(value.get<double>())) {
-    return expected(path, range.text(), value);
-  }
-  return value.get<float>();
-}
-
-template <int N>
-Result<glm::vec<N, float>> read_vector(const json& value, const std::string& path,
-                                       const Range& range) {
-  const std::string what = "an array of " + std::to_string(N) + " numbers, each " + range.text();
-  if (!value.is_array() || value.size() != N) return expected(path, what, value);
-  glm::vec<N, float> result;
-  for (int i = 0; i < N; ++i) {
-    const json& item = value[static_cast<size_t>(i)];
-    if (!item.is_number() || !finite_as_float(item.get<double>()) ||
-        !range.contains(item.get<double>())) {
-      return expected(path, what, value);
-    }
-    result[i] = item.get<float>();
-  }
-  return result;
-}
-
-Result<glm::vec3> read_direction(const json& value, const std::string& path) {
-  DDGI_ASSIGN_OR_RETURN(const glm::vec3 v, read_vector<3>(value, path, kAny));
-  const float length = glm::length(v);
-  if (!(length > 1e-6f) || !std::isfinite(length)) {
-    return expected(path, "a non-zero direction of finite length", value);
-  }
-  return v / length;
-}
-
-Result<std::string> read_string(const json& value, const std::string& path) {
-  if (!value.is_string()) return expected(path, "a string", value);
-  return value.get<std::string>();
-}
 
 // A path relative to the sidecar's folder.
 Result<fs::path> read_relative_path(const json& value, const std::string& path,
@@ -145,28 +44,16 @@ Result<Camera> read_camera(const json& value) {
   if (value.contains("up")) {
     DDGI_ASSIGN_OR_RETURN(up, read_direction(value["up"], path + ".up"));
   }
-  Camera camera;
-  camera.name = "sidecar";
+  float yfov = camera_yfov_radians(45.0f);
   if (value.contains("yfov_degrees")) {
     DDGI_ASSIGN_OR_RETURN(const float degrees,
                           read_number(value["yfov_degrees"], path + ".yfov_degrees",
                                       Range{0.0, kMaxCameraYfovDegrees, true, false}));
-    camera.yfov = camera_yfov_radians(degrees);
-  } else {
-    camera.yfov = camera_yfov_radians(45.0f);
+    yfov = camera_yfov_radians(degrees);
   }
-  const glm::vec3 view = target - position;
-  const float distance = glm::length(view);
-  if (!(distance > 1e-6f) || !std::isfinite(distance)) {
-    return invalid_argument(path + ": 'position' and 'target' must differ (by a finite distance)");
-  }
-  camera.position = position;
-  camera.forward = view / distance;
-  const glm::vec3 orthogonal_up = up - glm::dot(up, camera.forward) * camera.forward;
-  if (!(glm::length(orthogonal_up) > 1e-4f)) {
-    return invalid_argument(path + ".up: must not be parallel to the view direction");
-  }
-  camera.up = glm::normalize(orthogonal_up);
+  Result<Camera> camera = look_at_camera(position, target, up, yfov);
+  if (!camera.ok()) return camera.error().with_context(path);
+  camera->name = "sidecar";
   return camera;
 }
 
@@ -265,8 +152,9 @@ Result<Light> read_light(const json& value, const std::string& path) {
                                         Range{0.0, 90.0, true, false}));
     }
     if (!(inner < outer)) {
-      return invalid_argument(path + ": inner_cone_degrees (" + Range::num(inner) +
-                              ") must be less than outer_cone_degrees (" + Range::num(outer) + ")");
+      return invalid_argument(path + ": inner_cone_degrees (" + number_text(inner) +
+                              ") must be less than outer_cone_degrees (" + number_text(outer) +
+                              ")");
     }
     light.inner_cone_angle = inner * kDegrees;
     light.outer_cone_angle = outer * kDegrees;
@@ -325,30 +213,6 @@ Result<ProbeGridHint> read_probe_grid(const json& value) {
     grid.counts[i] = static_cast<int>(c.get<int64_t>());
   }
   return grid;
-}
-
-// Parses JSON, refusing repeated keys (nlohmann would keep the last one silently).
-Result<json> parse_json_strict(std::span<const uint8_t> text) {
-  std::vector<std::set<std::string>> open_objects;
-  std::string duplicate;
-  auto callback = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) {
-      open_objects.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      if (!open_objects.empty()) open_objects.pop_back();
-    } else if (event == json::parse_event_t::key && !open_objects.empty()) {
-      const std::string key = parsed.get<std::string>();
-      if (!open_objects.back().insert(key).second && duplicate.empty()) duplicate = key;
-    }
-    return true;
-  };
-  try {
-    json value = json::parse(text.begin(), text.end(), callback);
-    if (!duplicate.empty()) return invalid_argument("key '" + duplicate + "' appears twice");
-    return value;
-  } catch (const json::exception& e) {
-    return invalid_argument(std::string("invalid JSON: ") + e.what());
-  }
 }
 
 Result<Sidecar> parse_document(const json& root, const fs::path& file) {

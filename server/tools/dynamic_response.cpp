@@ -102,18 +102,6 @@ double ResponseCurve::ms_until(int64_t frames) const {
   return sum;
 }
 
-namespace {
-
-// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-}  // namespace
-
 Status write_response_files(const std::string& dir, const std::string& stem,
                             const std::vector<ResponseCurve>& curves) {
   ScatterPlot plot;

@@ -9,31 +9,35 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/flags.h"
 #include "core/log.h"
-#include "encode/write_image.h"
 #include "gi/field_params.h"
 #include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
-#include "metrics/flip.h"
-#include "metrics/pixel_error.h"
-#include "metrics/ssim.h"
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "tools/dynamic_response.h"
+#include "tools/eval_job.h"
 #include "tools/pareto.h"
+#include "tools/path_eval.h"
 #include "tools/reference_render.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
 
 namespace ddgi {
 namespace {
+
+using tools::auto_exposure;
+using tools::Config;
+using tools::EvalJob;
+using tools::make_gi_stack;
+using tools::score;
+using tools::write_exr;
 
 constexpr const char* kUsage = R"(usage: ddgi-eval SCENE... [flags]
 
@@ -74,176 +78,18 @@ readbacks not included).
                         frames and GPU ms until the error stays within 10% of it (the path
                         tracer: of the best configuration's), judged on 10-frame means; writes
                         DIR/SCENE.response.svg and .csv with --pareto DIR
+  --path FILE           instead of the table above: walk one scene's camera path (a
+                        *.path.json, docs/sidecar-format.md) with each configuration, one
+                        field update and frame per 1/--path-rate s of the path (a tracking
+                        field follows the camera); score the frame every --path-every s
+                        against a path-traced reference of that view; print per view and per
+                        configuration its errors, field ms and the frame-to-frame change of
+                        the indirect view at scroll events and otherwise; with --out-dir also
+                        DIR/SCENE.path.svg and .csv (FLIP along the path)
+  --path-rate N         frames per second of the path                  [30]
+  --path-every S        seconds between scored views                   [10]
   --backend B           auto | query | pipeline                         [auto]
 )";
-
-struct Config {
-  std::string name;
-  std::vector<std::string> assignments;
-};
-
-Result<std::vector<Config>> parse_configs(const std::string& text) {
-  std::vector<Config> configs;
-  std::stringstream entries(text);
-  std::string entry;
-  while (std::getline(entries, entry, ';')) {
-    if (entry.empty()) continue;
-    const size_t colon = entry.find(':');
-    if (colon == std::string::npos || colon == 0) {
-      return invalid_argument("--configs entry '" + entry + "' is not NAME:ASSIGNMENTS");
-    }
-    Config c{entry.substr(0, colon), {}};
-    // Assignments are comma-separated, and so are vector values (counts=8,8,8): a piece with
-    // no '=' continues the value before it.
-    std::stringstream items(entry.substr(colon + 1));
-    std::string item;
-    while (std::getline(items, item, ',')) {
-      if (item.find('=') != std::string::npos) {
-        c.assignments.push_back(item);
-      } else if (!c.assignments.empty()) {
-        c.assignments.back() += "," + item;
-      } else if (!item.empty()) {
-        return invalid_argument("--configs entry '" + entry + "': '" + item +
-                                "' is not NAME=VALUE");
-      }
-    }
-    configs.push_back(c);
-  }
-  if (configs.empty()) return invalid_argument("--configs names no configuration");
-  return configs;
-}
-
-// sRGB-encoded [0,1] floats from RGBA8, the form the metrics take.
-std::vector<float> to_unit_rgb(const std::vector<uint8_t>& rgba) {
-  std::vector<float> rgb;
-  rgb.reserve(rgba.size() / 4 * 3);
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
-  }
-  return rgb;
-}
-
-// Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
-float auto_exposure(const std::vector<float>& radiance) {
-  double log_sum = 0.0;
-  size_t n = 0;
-  for (size_t i = 0; i < radiance.size(); i += 4) {
-    const double y = 0.2126 * radiance[i] + 0.7152 * radiance[i + 1] + 0.0722 * radiance[i + 2];
-    log_sum += std::log(1e-6 + y);
-    ++n;
-  }
-  const double average = n ? std::exp(log_sum / n) : 1.0;
-  return static_cast<float>(std::clamp(0.18 / average, 1e-6, 1e6));
-}
-
-// Mean Rec. 709 luminance of linear RGBA radiance.
-double mean_luminance(const std::vector<float>& rgba) {
-  double sum = 0.0;
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
-  }
-  return rgba.empty() ? 0.0 : sum / double(rgba.size() / 4);
-}
-
-double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference) {
-  const double ref = mean_luminance(reference);
-  return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
-}
-
-// PSNR, SSIM and FLIP of the tone-mapped images, and the mean linear luminance over the
-// reference's.
-Result<tools::ImageScores> score(const std::vector<uint8_t>& reference,
-                                 const std::vector<float>& reference_radiance,
-                                 const std::vector<uint8_t>& test,
-                                 const std::vector<float>& test_radiance, uint32_t width,
-                                 uint32_t height) {
-  const std::vector<float> a = to_unit_rgb(reference), b = to_unit_rgb(test);
-  const metrics::RgbImageView va{width, height, a}, vb{width, height, b};
-  tools::ImageScores s;
-  DDGI_ASSIGN_OR_RETURN(s.psnr, metrics::psnr(va, vb));
-  DDGI_ASSIGN_OR_RETURN(s.ssim, metrics::ssim(va, vb));
-  DDGI_ASSIGN_OR_RETURN(const metrics::FlipResult f, metrics::flip(va, vb));
-  s.flip = f.mean;
-  s.mean_ratio = mean_ratio(test_radiance, reference_radiance);
-  return s;
-}
-
-Status write_exr(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
-                 const std::vector<float>& rgba) {
-  if (dir.empty()) return ok_status();
-  return encode::write_image(dir + "/" + name + ".exr", encode::rgb_from_rgba(width, height, rgba));
-}
-
-// What the flags ask for.
-struct EvalJob {
-  uint32_t width = 480, height = 270;
-  int64_t spp = 1024;
-  int64_t warmup = 64;
-  int64_t frames = 10;
-  std::vector<Config> configs;
-  std::vector<std::string> field_assignments;  // before every configuration's own
-  std::string out_dir;
-  std::string pareto_dir;  // empty: no --pareto
-  uint32_t pt_max_spp = 64;
-  std::string dynamic;  // empty: no --dynamic
-  int64_t response_frames = 120;
-};
-
-Result<EvalJob> parse_job(const Flags& flags) {
-  EvalJob job;
-  DDGI_ASSIGN_OR_RETURN(const int64_t width, flags.get_int("width", 480, 11, 16384));
-  DDGI_ASSIGN_OR_RETURN(const int64_t height, flags.get_int("height", 270, 11, 16384));
-  job.width = static_cast<uint32_t>(width);
-  job.height = static_cast<uint32_t>(height);
-  DDGI_ASSIGN_OR_RETURN(job.spp, flags.get_int("spp", 1024, 1, 1 << 20));
-  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", 64, 0, 100000));
-  DDGI_ASSIGN_OR_RETURN(job.frames, flags.get_int("frames", 10, 1, 10000));
-  DDGI_ASSIGN_OR_RETURN(const std::string configs_text, flags.get_string("configs", "default:"));
-  DDGI_ASSIGN_OR_RETURN(job.configs, parse_configs(configs_text));
-  DDGI_ASSIGN_OR_RETURN(job.out_dir, flags.get_string("out-dir", ""));
-  DDGI_ASSIGN_OR_RETURN(job.pareto_dir, flags.get_string("pareto", ""));
-  DDGI_ASSIGN_OR_RETURN(const int64_t pt_max_spp, flags.get_int("pt-max-spp", 64, 1, 65536));
-  job.pt_max_spp = static_cast<uint32_t>(pt_max_spp);
-  job.field_assignments = flags.get_all("field");
-  DDGI_ASSIGN_OR_RETURN(job.dynamic, flags.get_string("dynamic", ""));
-  DDGI_ASSIGN_OR_RETURN(job.response_frames, flags.get_int("response-frames", 120, 5, 100000));
-  return job;
-}
-
-// --field's assignments, then the configuration's own.
-std::vector<std::string> config_assignments(const EvalJob& job, const Config& config) {
-  std::vector<std::string> assignments = job.field_assignments;
-  assignments.insert(assignments.end(), config.assignments.begin(), config.assignments.end());
-  return assignments;
-}
-
-// A GI stack of `config` on `scene`, its grid fitted to `fitted` (the scene as loaded, so that a
-// moved object does not move the grid).
-Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
-                                               const Scene& fitted, const Scene& scene,
-                                               const Config& config) {
-  DDGI_ASSIGN_OR_RETURN(
-      const GiStackOptions options,
-      fitted_gi_options(fitted, true, DirectMode::kTracedShadows, config_assignments(job, config),
-                        {}, context.default_backend()));
-  return GiStack::create(context, scene, options);
-}
-
-Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
-                                      const std::string& stem) {
-  ReferencePairOptions options;
-  options.width = job.width;
-  options.height = job.height;
-  options.camera = default_camera(scene);
-  options.full_spp = options.second_spp = static_cast<uint32_t>(job.spp);
-  options.second_view = PathTraceView::kFieldIndirect;
-  options.exposure = auto_exposure;
-  DDGI_ASSIGN_OR_RETURN(ReferencePair refs, reference_pair(context, scene, options));
-  DDGI_TRY(write_exr(job.out_dir, stem + ".reference", job.width, job.height, refs.full.radiance));
-  DDGI_TRY(write_exr(job.out_dir, stem + ".reference-indirect", job.width, job.height,
-                     refs.second.radiance));
-  return refs;
-}
 
 // One table row: a warmed-up field of `config`, `frames` timed full frames (one update each),
 // then the indirect view, both scored against the references.
@@ -284,7 +130,7 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   }
   settings.read_radiance = true;
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
-  tools::ConfigPoint point{config.name, config_assignments(job, config)};
+  tools::ConfigPoint point{config.name, tools::config_assignments(job, config)};
   DDGI_ASSIGN_OR_RETURN(point.full, score(refs.full.ldr, refs.full.radiance, full.ldr,
                                           full.radiance, job.width, job.height));
   DDGI_ASSIGN_OR_RETURN(point.indirect, score(refs.second.ldr, refs.second.radiance, indirect.ldr,
@@ -454,8 +300,9 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
     const Scene changed = tools::changed_scene(scene, change);
     const std::string stem = tools::file_stem(scene_path);
     std::fprintf(stderr, "%s: %s\n", stem.c_str(), tools::describe(scene, change).c_str());
-    DDGI_ASSIGN_OR_RETURN(const ReferencePair refs,
-                          make_references(context, job, changed, stem + ".changed"));
+    DDGI_ASSIGN_OR_RETURN(
+        const ReferencePair refs,
+        tools::make_references(context, job, changed, default_camera(changed), stem + ".changed"));
     std::vector<tools::ResponseCurve> curves;
     for (const Config& config : job.configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ResponseCurve curve,
@@ -499,23 +346,27 @@ void print_fronts(const std::vector<tools::SceneTrade>& trades) {
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
-      Flags flags,
-      Flags::parse(argc, argv,
-                   {"width", "height", "spp", "warmup", "frames", "configs", "field", "out-dir",
-                    "backend", "pareto", "pt-max-spp", "dynamic", "response-frames"},
-                   {"help"}));
+      Flags flags, Flags::parse(argc, argv,
+                                {"width", "height", "spp", "warmup", "frames", "configs", "field",
+                                 "out-dir", "backend", "pareto", "pt-max-spp", "dynamic",
+                                 "response-frames", "path", "path-rate", "path-every"},
+                                {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
   }
   set_log_level(LogLevel::kWarning);
-  DDGI_ASSIGN_OR_RETURN(const EvalJob job, parse_job(flags));
+  DDGI_ASSIGN_OR_RETURN(const EvalJob job, tools::parse_job(flags));
   DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
   std::printf("device: %s, backend %s, %ux%u, reference %lld spp, %lld warm-up updates\n\n",
               context->caps().device_name.c_str(), vk::backend_name(context->default_backend()),
               job.width, job.height, static_cast<long long>(job.spp),
               static_cast<long long>(job.warmup));
   if (!job.dynamic.empty()) return run_dynamic(*context, job, flags.positional());
+  if (!job.camera_path.empty()) {
+    if (flags.positional().size() != 1) return invalid_argument("--path takes one scene");
+    return tools::run_path(*context, job, flags.positional().front());
+  }
   std::printf(
       "| scene | configuration | probes traced / sleeping / off | full: PSNR | SSIM | FLIP | "
       "mean/ref | indirect: PSNR | SSIM | FLIP | mean/ref | field ms | frame ms |\n"
@@ -524,7 +375,9 @@ Status run(int argc, char** argv) {
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     const std::string stem = tools::file_stem(scene_path);
-    DDGI_ASSIGN_OR_RETURN(const ReferencePair refs, make_references(*context, job, scene, stem));
+    DDGI_ASSIGN_OR_RETURN(
+        const ReferencePair refs,
+        tools::make_references(*context, job, scene, default_camera(scene), stem));
     tools::SceneTrade trade{stem, job.width, job.height, static_cast<uint32_t>(job.spp), {}, {}};
     for (const Config& config : job.configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ConfigPoint point,

@@ -32,6 +32,10 @@ struct ScatterPlot {
 // left out.
 std::string scatter_plot_svg(const ScatterPlot& plot);
 
+// A CSV field (RFC 4180) for the tables written beside plots: quoted when it holds a comma, a
+// quote or a line break.
+std::string csv_field(const std::string& text);
+
 Status write_text_file(const std::string& path, const std::string& text);
 
 }  // namespace ddgi

@@ -68,6 +68,28 @@ c stream --session "$session" --width 32 --height 24 --frames 6 --camera-moves 1
   --move-interval 0.05 --out-dir "$work" >"$work/stream.json"
 expect "$work/stream.json" '"frames": 6'
 [ -s "$work/frame_000006.jpg" ] || fail "stream --out-dir wrote no frames"
+# Camera moves along a path (scene/camera_path.h): 3 moves at 0, 0.5 and 1 s of a 1 s walk
+# from x = 0 to x = 0.4 (path-speed 10, 0.05 s apart); the last frame shows the path's end.
+cat >"$work/walk.path.json" <<'PATH'
+{"keyframes": [{"time": 0, "position": [0, 1, 3.4], "target": [0, 1, 0]},
+               {"time": 1, "position": [0.4, 1, 3.4], "target": [0.4, 1, 0]}]}
+PATH
+c stream --session "$session" --width 32 --height 24 --frames 100000 --seconds 1.5 \
+  --camera-moves 3 --move-interval 0.05 --camera-path "$work/walk.path.json" --path-speed 10 \
+  >"$work/path_stream.json"
+expect "$work/path_stream.json" '"measured": 3'
+python3 - "$work/path_stream.json" <<'CHECK' || fail "the path stream did not end at the path's end"
+import json, sys
+at = json.load(open(sys.argv[1]))["last_camera_position"]
+print("path stream's last camera:", at, "(expected [0.4, 1, 3.4])")
+sys.exit(0 if max(abs(a - b) for a, b in zip(at, [0.4, 1.0, 3.4])) < 1e-4 else 1)
+CHECK
+sed 's/"time": 1,/"time": 0,/' "$work/walk.path.json" >"$work/bad.path.json"
+if c stream --session "$session" --camera-moves 1 --camera-path "$work/bad.path.json" \
+  >"$work/bad_path.json" 2>/dev/null; then
+  fail "a path whose keyframe times do not increase was accepted"
+fi
+expect "$work/bad_path.json" 'keyframes\[1\].time: must be later'
 # The same stream through the web front's WebSocket, as a browser gets it.
 web_port=$(sed -n 's|.*web client at http://localhost:\([0-9]*\)/.*|\1|p' "$work/server.log")
 [ -n "$web_port" ] || fail "ddgi-server printed no web client URL"

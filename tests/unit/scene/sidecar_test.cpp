@@ -229,7 +229,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadSidecar{{{"camera", {{"position", {0, 0, 1}}, {"target", {0, 0, 1}}}}},
                    "camera: 'position' and 'target' must differ"},
         BadSidecar{{{"camera", {{"position", {0, 0, 0}}, {"target", {0, 1, 0}}}}},
-                   "camera.up: must not be parallel"},
+                   "camera: 'up' must not be parallel"},
         BadSidecar{
             {{"camera", {{"position", {0, 0, 0}}, {"target", {1, 0, 0}}, {"yfov_degrees", 180}}}},
             "camera.yfov_degrees: expected a number in (0, 179], got 180"},

@@ -1,0 +1,80 @@
+// ddgi-eval's shared parts: the job its flags describe, the field configurations it compares
+// (each a GI stack fitted to the scene with assignments over it) and how a frame is scored
+// against the path-traced reference. The table, --pareto and --dynamic (eval_main.cpp) and
+// --path (path_eval.cpp) use them alike.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/flags.h"
+#include "core/result.h"
+#include "gi/gi_stack.h"
+#include "scene/scene.h"
+#include "tools/pareto.h"
+#include "tools/reference_render.h"
+#include "vk/context.h"
+
+namespace ddgi::tools {
+
+// One field configuration: a name for the tables and its "name=value" field assignments.
+struct Config {
+  std::string name;
+  std::vector<std::string> assignments;
+};
+
+// --configs: NAME:ASSIGNMENTS entries separated by ';'.
+Result<std::vector<Config>> parse_configs(const std::string& text);
+
+// What the flags ask for.
+struct EvalJob {
+  uint32_t width = 480, height = 270;
+  int64_t spp = 1024;
+  int64_t warmup = 64;
+  int64_t frames = 10;
+  std::vector<Config> configs;
+  std::vector<std::string> field_assignments;  // before every configuration's own
+  std::string out_dir;
+  std::string pareto_dir;  // empty: no --pareto
+  uint32_t pt_max_spp = 64;
+  std::string dynamic;  // empty: no --dynamic
+  int64_t response_frames = 120;
+  std::string camera_path;   // empty: no --path
+  double path_rate = 30.0;   // field updates (and frames) per second of the path
+  double path_every = 10.0;  // seconds of the path between scored frames
+};
+
+Result<EvalJob> parse_job(const Flags& flags);
+
+// --field's assignments, then the configuration's own.
+std::vector<std::string> config_assignments(const EvalJob& job, const Config& config);
+
+// A GI stack of `config` on `scene`, its grid fitted to `fitted` (the scene as loaded, so that a
+// moved object does not move the grid).
+Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
+                                               const Scene& fitted, const Scene& scene,
+                                               const Config& config);
+
+// Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
+float auto_exposure(const std::vector<float>& radiance);
+
+// PSNR, SSIM and FLIP of the tone-mapped images (RGBA8), and the mean linear luminance of
+// `test_radiance` over the reference's.
+Result<ImageScores> score(const std::vector<uint8_t>& reference,
+                          const std::vector<float>& reference_radiance,
+                          const std::vector<uint8_t>& test, const std::vector<float>& test_radiance,
+                          uint32_t width, uint32_t height);
+
+// The path-traced full image and field part (everything but punctual direct light) of `scene`
+// seen by `camera`, --spp samples each, exposure from the full image; written as
+// DIR/STEM.reference.exr and STEM.reference-indirect.exr with --out-dir.
+Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,
+                                      const Camera& camera, const std::string& stem);
+
+// DIR/NAME.exr of linear RGBA (RGB kept); nothing when `dir` is empty.
+Status write_exr(const std::string& dir, const std::string& name, uint32_t width, uint32_t height,
+                 const std::vector<float>& rgba);
+
+}  // namespace ddgi::tools
