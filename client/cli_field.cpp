@@ -72,6 +72,8 @@ int atlas(Cli& cli) {
   DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
   DDGI_CLI_TRY(const v1::AtlasKind kind, kind_flag(cli.flags));
   request.set_kind(kind);
+  DDGI_CLI_TRY(const int64_t volume, cli.flags.get_int("volume", 0, 0, 1ll << 31));
+  request.set_volume(static_cast<uint32_t>(volume));
   DDGI_CLI_TRY(const std::string format, cli.flags.get_string("format", "exr"));
   if (format == "exr") {
     request.set_format(v1::ATLAS_FORMAT_EXR);
@@ -212,10 +214,10 @@ void add_field_commands(std::vector<CommandSpec>& commands) {
   commands.push_back(
       {"atlas",
        "--session ID [--kind irradiance|distance|shadow|shadow-moments|probe-states|sh] "
-       "[--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
-       "dump a probe atlas (metadata to stdout and FILE.json), optionally "
-       "converted through OpenImageIO",
-       {"session", "kind", "format", "out", "convert"},
+       "[--volume V] [--format exr|raw] --out FILE [--convert FILE.png|.tif|...]",
+       "dump a probe atlas (metadata to stdout and FILE.json), of volume V of a field of "
+       "cascades (0, the finest, by default), optionally converted through OpenImageIO",
+       {"session", "kind", "volume", "format", "out", "convert"},
        {},
        atlas});
   commands.push_back({"export-scene",

@@ -386,8 +386,9 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
 Status require_one_volume(const IrradianceField& field, const std::string& what) {
   if (field.params().cascades == 1) return ok_status();
   return failed_precondition(what + " of a field of " + std::to_string(field.params().cascades) +
-                             " cascades is not supported yet: per-volume dumps and streams are "
-                             "not built (docs/cascades.md); use cascades=1");
+                             " cascades is not supported yet: per-volume streams are not built "
+                             "(docs/cascades.md; DumpAtlas dumps one volume at a time); use "
+                             "cascades=1");
 }
 
 uint32_t IrradianceField::volume_of(uint32_t slot) const {

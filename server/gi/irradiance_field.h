@@ -46,8 +46,8 @@ enum class FieldUpdatePath {
 };
 
 class IrradianceField;
-// Dumps and streams describe one grid: FAILED_PRECONDITION naming `what` for a field of several
-// volumes (cascades), whose per-volume dumps are not built yet (docs/cascades.md).
+// Probe streams describe one grid: FAILED_PRECONDITION naming `what` for a field of several
+// volumes (cascades), whose per-volume streams are not built yet (docs/cascades.md).
 Status require_one_volume(const IrradianceField& field, const std::string& what);
 
 class IrradianceField {

@@ -7,6 +7,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -81,15 +82,16 @@ void set_grid(v1::AtlasMetadata& m, const glm::vec3& origin, const glm::vec3& sp
   set_vec(m.mutable_probe_spacing(), spacing);
 }
 
-v1::AtlasMetadata field_metadata(const IrradianceField& field, v1::AtlasKind kind,
-                                 v1::AtlasFormat format, const AtlasImage& image) {
+v1::AtlasMetadata field_metadata(const IrradianceField& field, const FieldVolume& volume,
+                                 v1::AtlasKind kind, v1::AtlasFormat format,
+                                 const AtlasImage& image) {
   const IrradianceFieldParams& p = field.params();
   v1::AtlasMetadata m;
   m.set_kind(kind);
   m.set_format(format);
   m.set_width(image.width);
   m.set_height(image.height);
-  set_grid(m, p.origin, p.spacing, p.counts);
+  set_grid(m, volume.origin, volume.spacing, volume.counts);
   m.set_border_texels(gpu::kAtlasBorder);
   m.set_tiles_per_row(atlas_layout(p).tiles_per_row);
   m.set_field_updates(field.updates());
@@ -145,6 +147,7 @@ v1::AtlasMetadata shadow_metadata(const ShadowField& shadow, v1::AtlasKind kind,
 
 // One row per probe: its nine SH coefficients, RGB.
 std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
+                                                 const FieldVolume& volume,
                                                  const std::vector<gpu::ShProbe>& probes,
                                                  v1::AtlasFormat format) {
   const IrradianceFieldParams& p = field.params();
@@ -158,7 +161,7 @@ std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
   m.set_format(format);
   m.set_width(image.width);
   m.set_height(image.height);
-  set_grid(m, p.origin, p.spacing, p.counts);
+  set_grid(m, volume.origin, volume.spacing, volume.counts);
   m.set_texels_per_probe(9);
   m.set_tiles_per_row(1);
   m.set_encoding_gamma(1.0f);
@@ -174,12 +177,11 @@ std::pair<v1::AtlasMetadata, AtlasImage> sh_dump(const IrradianceField& field,
 
 // One texel per probe: relocation offset and state.
 std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
-    const IrradianceField& field, const std::vector<gpu::ProbeState>& states,
-    v1::AtlasFormat format) {
-  const IrradianceFieldParams& p = field.params();
+    const IrradianceField& field, const FieldVolume& volume,
+    const std::vector<gpu::ProbeState>& states, v1::AtlasFormat format) {
   AtlasImage image;
-  image.width = static_cast<uint32_t>(p.counts.x);
-  image.height = static_cast<uint32_t>(p.counts.y * p.counts.z);
+  image.width = static_cast<uint32_t>(volume.counts.x);
+  image.height = static_cast<uint32_t>(volume.counts.y * volume.counts.z);
   image.channels = 4;
   image.texels = probe_state_values(states);
   v1::AtlasMetadata m;
@@ -187,7 +189,7 @@ std::pair<v1::AtlasMetadata, AtlasImage> probe_state_dump(
   m.set_format(format);
   m.set_width(image.width);
   m.set_height(image.height);
-  set_grid(m, p.origin, p.spacing, p.counts);
+  set_grid(m, volume.origin, volume.spacing, volume.counts);
   m.set_texels_per_probe(1);
   m.set_tiles_per_row(image.width);
   m.set_encoding_gamma(1.0f);
@@ -214,22 +216,76 @@ Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image
   return atlas;
 }
 
+// Volume `index` of the field as it is now, or an error naming the volumes there are.
+Result<FieldVolume> requested_volume(const IrradianceField& field, uint32_t index) {
+  const std::vector<FieldVolume> volumes = field.volumes();
+  if (index >= volumes.size()) {
+    return invalid_argument("volume " + std::to_string(index) + ": the field has " +
+                            std::to_string(volumes.size()) + " volume(s), 0 to " +
+                            std::to_string(volumes.size() - 1) +
+                            " (FieldParams.volumes lists them)");
+  }
+  return volumes[index];
+}
+
+// The probes of `volume` from a list of every volume's (grid order, volume after volume).
+template <typename T>
+std::vector<T> volume_probes(const std::vector<T>& all, const FieldVolume& volume) {
+  const auto first = all.begin() + volume.first_probe;
+  const size_t count = size_t(volume.counts.x) * volume.counts.y * volume.counts.z;
+  return std::vector<T>(first, first + std::ptrdiff_t(count));
+}
+
+// The tiles of `volume` from an atlas of every volume's (grid order, `tiles_per_row` tiles of
+// (texels + 2 borders)^2 per row), laid out as the atlas of that volume alone: the same tiles
+// per row, as many rows as its probes fill. A field of one volume is returned as it is.
+AtlasImage volume_tiles(const AtlasImage& all, uint32_t tiles_per_row, uint32_t texels,
+                        const FieldVolume& volume) {
+  const uint32_t count = uint32_t(volume.counts.x * volume.counts.y * volume.counts.z);
+  const uint32_t side = texels + 2 * gpu::kAtlasBorder;
+  const uint32_t rows = (count + tiles_per_row - 1) / tiles_per_row;
+  if (volume.first_probe == 0 && rows * side == all.height) return all;
+  AtlasImage image;
+  image.width = all.width;
+  image.height = rows * side;
+  image.channels = all.channels;
+  image.texels.assign(size_t(image.width) * image.height * image.channels, 0.0f);
+  auto tile_start = [&](uint32_t tile) {
+    return (size_t(tile / tiles_per_row) * side * all.width + size_t(tile % tiles_per_row) * side) *
+           all.channels;
+  };
+  const size_t row_values = size_t(side) * all.channels;
+  for (uint32_t g = 0; g < count; ++g) {
+    for (uint32_t y = 0; y < side; ++y) {
+      const size_t row = size_t(y) * all.width * all.channels;
+      std::copy_n(all.texels.begin() + std::ptrdiff_t(tile_start(volume.first_probe + g) + row),
+                  row_values, image.texels.begin() + std::ptrdiff_t(tile_start(g) + row));
+    }
+  }
+  return image;
+}
+
 }  // namespace
 
 Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,
                                                             IrradianceField* field,
-                                                            ShadowField* shadow, v1::AtlasKind kind,
-                                                            v1::AtlasFormat format) {
-  switch (kind) {
+                                                            ShadowField* shadow,
+                                                            const AtlasRequest& request) {
+  switch (request.kind) {
     case v1::ATLAS_KIND_IRRADIANCE:
     case v1::ATLAS_KIND_DISTANCE: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
-      auto image = kind == v1::ATLAS_KIND_IRRADIANCE ? field->read_irradiance_atlas()
-                                                     : field->read_distance_atlas();
-      if (!image.ok()) return image.error();
-      v1::AtlasMetadata metadata = field_metadata(*field, kind, format, *image);
-      return std::make_pair(std::move(metadata), std::move(image).value());
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
+      DDGI_ASSIGN_OR_RETURN(const AtlasImage all, request.kind == v1::ATLAS_KIND_IRRADIANCE
+                                                      ? field->read_irradiance_atlas()
+                                                      : field->read_distance_atlas());
+      const IrradianceFieldParams& p = field->params();
+      const uint32_t texels =
+          request.kind == v1::ATLAS_KIND_IRRADIANCE ? p.irradiance_texels : p.distance_texels;
+      AtlasImage image = volume_tiles(all, atlas_layout(p).tiles_per_row, texels, volume);
+      v1::AtlasMetadata metadata =
+          field_metadata(*field, volume, request.kind, request.format, image);
+      return std::make_pair(std::move(metadata), std::move(image));
     }
     case v1::ATLAS_KIND_SHADOW:
     case v1::ATLAS_KIND_SHADOW_MOMENTS: {
@@ -238,27 +294,31 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
             "this session has no shadow field (create it with direct_mode SHADOW_FIELD or "
             "AMBIENT_OCCLUSION)");
       }
-      DDGI_ASSIGN_OR_RETURN(
-          AtlasImage image,
-          read_float_image(context, kind == v1::ATLAS_KIND_SHADOW ? shadow->visibility_atlas()
-                                                                  : shadow->moments_atlas()));
-      v1::AtlasMetadata metadata = shadow_metadata(*shadow, kind, format, image);
+      if (request.volume != 0) {
+        return invalid_argument("volume " + std::to_string(request.volume) +
+                                ": the shadow field has one volume, 0");
+      }
+      DDGI_ASSIGN_OR_RETURN(AtlasImage image,
+                            read_float_image(context, request.kind == v1::ATLAS_KIND_SHADOW
+                                                          ? shadow->visibility_atlas()
+                                                          : shadow->moments_atlas()));
+      v1::AtlasMetadata metadata = shadow_metadata(*shadow, request.kind, request.format, image);
       return std::make_pair(std::move(metadata), std::move(image));
     }
     case v1::ATLAS_KIND_SH: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShProbe> probes, field->read_sh_probes());
-      return sh_dump(*field, probes, format);
+      return sh_dump(*field, volume, volume_probes(probes, volume), request.format);
     }
     case v1::ATLAS_KIND_PROBE_STATES: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_TRY(require_one_volume(*field, "DumpAtlas"));
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field->read_probe_states());
-      return probe_state_dump(*field, states, format);
+      return probe_state_dump(*field, volume, volume_probes(states, volume), request.format);
     }
     default:
-      return invalid_argument("atlas kind " + std::to_string(int(kind)) + " is not dumped");
+      return invalid_argument("atlas kind " + std::to_string(int(request.kind)) + " is not dumped");
   }
 }
 

@@ -19,12 +19,20 @@ namespace ddgi::service {
 
 using AtlasImage = IrradianceField::AtlasImage;
 
-// The dump of `kind` with its metadata (total_bytes not yet set); `shadow` may be null (then
-// the shadow kinds are FAILED_PRECONDITION).
+// What a DumpAtlas asks for (kind and format already validated).
+struct AtlasRequest {
+  v1::AtlasKind kind = v1::ATLAS_KIND_IRRADIANCE;
+  v1::AtlasFormat format = v1::ATLAS_FORMAT_EXR;
+  uint32_t volume = 0;  // of the irradiance field (FieldParams.volumes); checked here
+};
+
+// The dump of `request.kind` with its metadata (total_bytes not yet set): for the irradiance
+// field's kinds, the probes of one volume as a grid of its own; `shadow` may be null (then the
+// shadow kinds are FAILED_PRECONDITION).
 Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context,
                                                             IrradianceField* field,
-                                                            ShadowField* shadow, v1::AtlasKind kind,
-                                                            v1::AtlasFormat format);
+                                                            ShadowField* shadow,
+                                                            const AtlasRequest& request);
 
 // The dump's bytes; sets metadata.total_bytes.
 Result<std::vector<uint8_t>> encode_atlas(const AtlasImage& image, v1::AtlasMetadata& metadata);

@@ -574,7 +574,8 @@ grpc::ServerWriteReactor<v1::AtlasChunk>* RenderServiceImpl::DumpAtlas(
   if (format == v1::ATLAS_FORMAT_UNSPECIFIED) format = v1::ATLAS_FORMAT_EXR;
   auto session = sessions_.find(session_id);
   if (!session.ok()) return fail(to_grpc(session.error()));
-  (*session)->dump_atlas(kind, format, [this, state, session_id](auto dump) {
+  const AtlasRequest atlas{kind, format, request->volume()};
+  (*session)->dump_atlas(atlas, [this, state, session_id](auto dump) {
     record("DumpAtlas", session_id, dump.ok() ? grpc::Status::OK : to_grpc(dump.error()));
     state->deliver(std::move(dump));
   });

@@ -424,18 +424,18 @@ void Session::query(std::vector<IrradianceQuery> points, v1::QueryIrradianceRepl
       std::move(done));
 }
 
-void Session::dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone done) {
+void Session::dump_atlas(const AtlasRequest& request, AtlasDone done) {
   auto shared_done = std::make_shared<AtlasDone>(std::move(done));
   loop_.enqueue(
       false,
-      [this, kind, format, shared_done](Completion) {
+      [this, request, shared_done](Completion) {
         finish_frames();
         auto result = [&]() -> Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>> {
-          const bool shadow_kind =
-              kind == v1::ATLAS_KIND_SHADOW || kind == v1::ATLAS_KIND_SHADOW_MOMENTS;
+          const bool shadow_kind = request.kind == v1::ATLAS_KIND_SHADOW ||
+                                   request.kind == v1::ATLAS_KIND_SHADOW_MOMENTS;
           DDGI_TRY(require_field(shadow_kind ? v1::FIELD_KIND_SHADOW : v1::FIELD_KIND_IRRADIANCE));
           DDGI_ASSIGN_OR_RETURN(auto dump,
-                                read_atlas(*env_.context, field(), shadow_field(), kind, format));
+                                read_atlas(*env_.context, field(), shadow_field(), request));
           DDGI_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, encode_atlas(dump.second, dump.first));
           return std::make_pair(std::move(dump.first), std::move(bytes));
         }();

@@ -21,6 +21,7 @@
 
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
+#include "service/atlas_export.h"
 #include "service/convert.h"
 #include "service/frame_encoder.h"
 #include "service/frame_record.h"
@@ -86,7 +87,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void query(std::vector<IrradianceQuery> points, v1::QueryIrradianceReply* reply, Completion done);
   // Reads an atlas and encodes it; `done` gets the metadata and bytes.
   using AtlasDone = std::function<void(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>>)>;
-  void dump_atlas(v1::AtlasKind kind, v1::AtlasFormat format, AtlasDone done);
+  void dump_atlas(const AtlasRequest& request, AtlasDone done);
   // ExportScene: copies the scene and its lights on the loop, then writes the .glb on a thread
   // of its own (large textured scenes take seconds; the session's frames go on meanwhile).
   using SceneDone = std::function<void(Result<std::pair<v1::SceneMetadata, std::vector<uint8_t>>>)>;

@@ -21,8 +21,9 @@ struct AtlasDownload {
   std::vector<size_t> message_sizes;  // each message's encoded size, metadata message first
 };
 
+// `volume`: DumpAtlasRequest.volume (of a field of cascades).
 AtlasDownload download_atlas(v1::RenderService::Stub& stub, const std::string& session_id,
                              v1::AtlasKind kind, v1::AtlasFormat format,
-                             const std::string& token = "");
+                             const std::string& token = "", uint32_t volume = 0);
 
 }  // namespace ddgi::test

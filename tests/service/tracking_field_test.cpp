@@ -89,9 +89,11 @@ TEST_F(TrackingFieldTest, FieldFollowsTheCameraInWholeCells) {
 }
 
 // A field of cascades over RPC: GetFieldParams lists its volumes (finest first, each twice as
-// coarse, around one centre), frames render from the blend, and the per-grid dumps refuse it
-// naming why (per-volume dumps are not built yet) while the session keeps serving.
-TEST_F(TrackingFieldTest, CascadesAreListedAndDumpsSayWhatIsMissing) {
+// coarse, around one centre), frames render from the blend, and DumpAtlas dumps one volume at a
+// time as a grid of its own: the two dumps together hold every probe of the field once (their
+// states add up to the field's counts) and differ (the coarse volume's outer planes lie outside
+// the box).
+TEST_F(TrackingFieldTest, CascadesAreListedAndDumpedOneVolumeAtATime) {
   v1::CreateSessionRequest request = small_session_request("cornell_box", 1);
   ASSERT_EQ(request.field_params(0).name(), "counts");
   request.mutable_field_params(0)->set_value("4,4,4");
@@ -110,11 +112,52 @@ TEST_F(TrackingFieldTest, CascadesAreListedAndDumpsSayWhatIsMissing) {
   EXPECT_FLOAT_EQ(coarse.origin().y() + 1.5f * coarse.spacing().y(), 1.0f);
   EXPECT_EQ(info.field().probes(), 128u);
 
-  const AtlasDownload dump = download_atlas(*stub_, info.session_id(), v1::ATLAS_KIND_IRRADIANCE,
-                                            v1::ATLAS_FORMAT_RAW_F32);
-  EXPECT_EQ(dump.status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
-  EXPECT_NE(dump.status.error_message().find("cascades"), std::string::npos)
-      << dump.status.error_message();
+  uint64_t states_in_dumps[4] = {0, 0, 0, 0};  // vigilant, awake, sleeping, off
+  std::vector<float> state_texels[2], irradiance[2];
+  for (uint32_t v = 0; v < 2; ++v) {
+    SCOPED_TRACE("volume " + std::to_string(v));
+    const v1::FieldVolume& volume = info.field().volumes(int(v));
+    const AtlasDownload states = download_atlas(
+        *stub_, info.session_id(), v1::ATLAS_KIND_PROBE_STATES, v1::ATLAS_FORMAT_RAW_F32, "", v);
+    ASSERT_TRUE(states.status.ok()) << states.status.error_message();
+    EXPECT_EQ(states.metadata.probe_counts_x(), volume.counts_x());
+    EXPECT_EQ(states.metadata.probe_spacing().x(), volume.spacing().x());
+    EXPECT_EQ(states.metadata.grid_origin().y(), volume.origin().y());
+    state_texels[v] = raw_floats(states.bytes);
+    ASSERT_EQ(state_texels[v].size(), 64u * 4u);
+    for (size_t p = 0; p < 64; ++p) ++states_in_dumps[size_t(state_texels[v][p * 4 + 3]) & 3];
+    const AtlasDownload atlas = download_atlas(*stub_, info.session_id(), v1::ATLAS_KIND_IRRADIANCE,
+                                               v1::ATLAS_FORMAT_RAW_F32, "", v);
+    ASSERT_TRUE(atlas.status.ok()) << atlas.status.error_message();
+    // Exactly the rows of tiles 64 probes fill.
+    const uint32_t side = atlas.metadata.texels_per_probe() + 2 * atlas.metadata.border_texels();
+    const uint32_t per_row = atlas.metadata.tiles_per_row();
+    EXPECT_EQ(atlas.metadata.height(), (64 + per_row - 1) / per_row * side);
+    EXPECT_EQ(atlas.metadata.grid_origin().x(), volume.origin().x());
+    irradiance[v] = raw_floats(atlas.bytes);
+    double sum = 0.0;
+    for (float t : irradiance[v]) sum += t;
+    EXPECT_GT(sum, 0.0) << "volume " << v << " dumps a black atlas";
+  }
+  const v1::ProbeStateCounts& field = info.field().probe_states();
+  std::printf("states in the two dumps: %llu vigilant, %llu awake, %llu sleeping, %llu off\n",
+              static_cast<unsigned long long>(states_in_dumps[0]),
+              static_cast<unsigned long long>(states_in_dumps[1]),
+              static_cast<unsigned long long>(states_in_dumps[2]),
+              static_cast<unsigned long long>(states_in_dumps[3]));
+  EXPECT_EQ(states_in_dumps[0], field.vigilant());
+  EXPECT_EQ(states_in_dumps[1], field.awake());
+  EXPECT_EQ(states_in_dumps[2], field.sleeping());
+  EXPECT_EQ(states_in_dumps[3], field.off());
+  EXPECT_NE(state_texels[0], state_texels[1]);
+  EXPECT_NE(irradiance[0], irradiance[1]);
+
+  const AtlasDownload past = download_atlas(*stub_, info.session_id(), v1::ATLAS_KIND_IRRADIANCE,
+                                            v1::ATLAS_FORMAT_RAW_F32, "", 2);
+  EXPECT_EQ(past.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(past.status.error_message().find("volume 2: the field has 2 volume(s)"),
+            std::string::npos)
+      << past.status.error_message();
   v1::Frame frame;
   ASSERT_TRUE(render(info.session_id(), 32, 32, &frame).ok());
   EXPECT_GT(mean_level(decode(frame)), 5.0);
