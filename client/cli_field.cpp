@@ -180,6 +180,10 @@ int query(Cli& cli) {
   DDGI_CLI_TRY(*request.mutable_session_id(), session_flag(cli.flags));
   DDGI_CLI_TRY(const std::vector<v1::QueryPoint> points, points_flags(cli.flags));
   for (const v1::QueryPoint& point : points) *request.add_points() = point;
+  if (cli.flags.has("volume")) {
+    DDGI_CLI_TRY(const int64_t volume, cli.flags.get_int("volume", 0, 0, 1ll << 31));
+    request.set_volume(static_cast<uint32_t>(volume));
+  }
   v1::QueryIrradianceReply reply;
   auto context = cli.context();
   const grpc::Status status = cli.stub->QueryIrradiance(context.get(), request, &reply);
@@ -227,9 +231,11 @@ void add_field_commands(std::vector<CommandSpec>& commands) {
                       {},
                       export_scene});
   commands.push_back({"query",
-                      "--session ID --points 'px,py,pz,nx,ny,nz;...' | --points-file FILE",
-                      "field irradiance (E/pi) at points",
-                      {"session", "points", "points-file"},
+                      "--session ID --points 'px,py,pz,nx,ny,nz;...' | --points-file FILE "
+                      "[--volume V]",
+                      "field irradiance (E/pi) at points: the field's blend, or volume V of a "
+                      "field of cascades alone",
+                      {"session", "points", "points-file", "volume"},
                       {},
                       query});
 }

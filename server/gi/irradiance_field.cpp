@@ -782,7 +782,15 @@ Status IrradianceField::warm_up(uint32_t count, DirectMode direct_mode) {
   return settled.ok() ? ok_status() : Status(settled.error());
 }
 
-Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries) {
+Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries,
+                                                      std::optional<uint32_t> volume) {
+  if (volume && *volume >= volumes_.size()) {
+    return invalid_argument("volume " + std::to_string(*volume) + ": the field has " +
+                            std::to_string(volumes_.size()) + " volume(s), 0 to " +
+                            std::to_string(volumes_.size() - 1) +
+                            " (FieldParams.volumes lists them)");
+  }
+  const uint32_t mode = volume ? gpu::kQueryVolume0 + *volume : gpu::kQueryBlended;
   std::vector<gpu::FieldQuery> input;
   for (const IrradianceQuery& q : queries) {
     input.push_back(
@@ -790,8 +798,8 @@ Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<Irradian
   }
   DDGI_ASSIGN_OR_RETURN(
       const std::vector<glm::vec4> answers,
-      (sets_.query<gpu::FieldQuery, glm::vec4>(input, [](uint32_t count, uint32_t row_width) {
-        return vk::Pass::push(gpu::FieldDispatch{count, row_width, 0, 1, 1, 0, 0, 0});
+      (sets_.query<gpu::FieldQuery, glm::vec4>(input, [mode](uint32_t count, uint32_t row_width) {
+        return vk::Pass::push(gpu::FieldDispatch{count, row_width, 0, 1, 1, 0, mode, 0});
       })));
   std::vector<glm::vec3> result;
   for (const glm::vec4& a : answers) result.push_back(glm::vec3(a));

@@ -120,8 +120,11 @@ class IrradianceField {
   // updates at 0.97), then the rest at the configured hysteresis to settle the noise.
   Status warm_up(uint32_t count, DirectMode direct_mode);
 
-  // Field irradiance M (= E / pi) at arbitrary points.
-  Result<std::vector<glm::vec3>> query(const std::vector<IrradianceQuery>& queries);
+  // Field irradiance M (= E / pi) at arbitrary points: blended over the volumes as frames
+  // sample it, or from `volume` alone (clamped to its grid); an error names a volume past the
+  // field's.
+  Result<std::vector<glm::vec3>> query(const std::vector<IrradianceQuery>& queries,
+                                       std::optional<uint32_t> volume = std::nullopt);
 
   // The readers below give every probe's data in grid order (index x + counts.x * (y +
   // counts.y * z) from the origin, atlas tile by tile), whatever slots a scrolling field keeps

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include "core/log.h"
@@ -627,7 +628,9 @@ grpc::ServerUnaryReactor* RenderServiceImpl::QueryIrradiance(
       points.push_back(point);
     }
     DDGI_ASSIGN_OR_RETURN(auto session, sessions_.find(request->session_id()));
-    session->query(std::move(points), reply, std::move(done));
+    const std::optional<uint32_t> volume =
+        request->has_volume() ? std::optional<uint32_t>(request->volume()) : std::nullopt;
+    session->query(std::move(points), volume, reply, std::move(done));
     return ok_status();
   });
 }

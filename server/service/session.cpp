@@ -409,15 +409,16 @@ void Session::detach_probe_stream(std::shared_ptr<ProbeStreamState> stream) {
       [](const Status&) {});
 }
 
-void Session::query(std::vector<IrradianceQuery> points, v1::QueryIrradianceReply* reply,
-                    Completion done) {
+void Session::query(std::vector<IrradianceQuery> points, std::optional<uint32_t> volume,
+                    v1::QueryIrradianceReply* reply, Completion done) {
   auto shared_points = std::make_shared<std::vector<IrradianceQuery>>(std::move(points));
   loop_.enqueue_sync(
       false,
-      [this, shared_points, reply]() -> Status {
+      [this, shared_points, volume, reply]() -> Status {
         finish_frames();
         DDGI_TRY(require_field(v1::FIELD_KIND_IRRADIANCE));
-        DDGI_ASSIGN_OR_RETURN(const std::vector<glm::vec3> values, field()->query(*shared_points));
+        DDGI_ASSIGN_OR_RETURN(const std::vector<glm::vec3> values,
+                              field()->query(*shared_points, volume));
         to_proto(values, field()->updates(), reply);
         return ok_status();
       },

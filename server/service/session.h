@@ -84,7 +84,9 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   // StreamProbes: the stream gets a snapshot of the field after every update from now on.
   void attach_probe_stream(std::shared_ptr<ProbeStreamState> stream);
   void detach_probe_stream(std::shared_ptr<ProbeStreamState> stream);
-  void query(std::vector<IrradianceQuery> points, v1::QueryIrradianceReply* reply, Completion done);
+  // `volume`: one volume of the field alone (QueryIrradianceRequest.volume), else the blend.
+  void query(std::vector<IrradianceQuery> points, std::optional<uint32_t> volume,
+             v1::QueryIrradianceReply* reply, Completion done);
   // Reads an atlas and encodes it; `done` gets the metadata and bytes.
   using AtlasDone = std::function<void(Result<std::pair<v1::AtlasMetadata, std::vector<uint8_t>>>)>;
   void dump_atlas(const AtlasRequest& request, AtlasDone done);

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Irradiance of the field at given points and normals (scripted checks, tests, the RPC).
+// Irradiance of the field at given points and normals (scripted checks, tests, the RPC): the
+// blend over the field's volumes, or one volume alone (pc.mode).
 #include "common/field.glsl"
 #include "common/dispatch.glsl"
 
@@ -18,5 +19,10 @@ void main() {
   const uint id = linear_invocation(pc.row_width);
   if (id >= pc.count) return;
   const FieldQuery q = queries[id];
-  answers[id] = vec4(sample_irradiance(q.position, q.normal, q.to_viewer), 0.0);
+  if (pc.mode == kQueryBlended) {
+    answers[id] = vec4(sample_irradiance(q.position, q.normal, q.to_viewer), 0.0);
+  } else {
+    field_volume = pc.mode - kQueryVolume0;
+    answers[id] = vec4(sample_volume_irradiance(q.position, q.normal, q.to_viewer), 0.0);
+  }
 }

@@ -157,11 +157,15 @@ struct FieldDispatch {
   uint list_size;   // entries in the probe list (the window wraps around)
   uint per_probe;   // invocations per probe (rays, texels, border texels)
   uint first_ray;   // ray index of the first ray a tracing dispatch handles
-  uint mode;        // kProbeMode* (relocate/classify kernel only)
+  uint mode;        // kProbeMode* (relocate/classify kernel); the query kernel: kQueryBlended
+                    // or kQueryVolume0 + v (volume v alone)
   uint pad0;
 };
 
-// The query kernel (tests, the RPC, scripted checks): field irradiance at given points.
+// The query kernel (tests, the RPC, scripted checks): field irradiance at given points, blended
+// over the volumes as frames sample it, or from one volume alone (FieldDispatch::mode).
+DDGI_CONST uint kQueryBlended = 0;
+DDGI_CONST uint kQueryVolume0 = 1;
 DDGI_CONST uint kFieldQuerySet = 1;
 DDGI_CONST uint kFieldQueryBindingQueries = 0;  // FieldQuery per point
 DDGI_CONST uint kFieldQueryBindingAnswers = 1;  // vec4 per point: irradiance M (rgb), 0

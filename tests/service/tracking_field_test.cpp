@@ -2,7 +2,9 @@
 // follows the camera of the frames that carry its updates in whole cells, GetFieldParams shows
 // where it is now, and dumps give probes in grid order from the new origin (the probes that
 // stayed are where the grid says they are).
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -161,6 +163,49 @@ TEST_F(TrackingFieldTest, CascadesAreListedAndDumpedOneVolumeAtATime) {
   v1::Frame frame;
   ASSERT_TRUE(render(info.session_id(), 32, 32, &frame).ok());
   EXPECT_GT(mean_level(decode(frame)), 5.0);
+}
+
+// QueryIrradiance of a field of cascades, per volume and blended, in the volumes of the test
+// above: the fine volume (0.5 m, x in [-0.75, 0.75]) has weight 1 within a cell of its centre
+// and 0 from its edge on, so at the centre the blend is the fine volume's answer and at
+// x = 1.1 (past its grid, inside the coarse one) the coarse volume's; the two volumes answer
+// differently at the centre. A volume past the field's is refused by name.
+TEST_F(TrackingFieldTest, QueriesAnswerPerVolumeAndBlended) {
+  v1::CreateSessionRequest request = small_session_request("cornell_box", 1);
+  request.mutable_field_params(0)->set_value("4,4,4");
+  add_params(request.mutable_field_params(),
+             {{"spacing", "0.5,0.5,0.5"}, {"origin", "-0.75,0.25,-0.75"}, {"cascades", "2"}});
+  const v1::SessionInfo info = create_session(request);
+  ASSERT_FALSE(info.session_id().empty());
+  auto ask = [&](std::optional<uint32_t> volume, v1::QueryIrradianceReply* reply) {
+    v1::QueryIrradianceRequest query;
+    query.set_session_id(info.session_id());
+    for (const float x : {0.0f, 1.1f}) {
+      v1::QueryPoint* point = query.add_points();
+      point->mutable_position()->set_x(x);
+      point->mutable_position()->set_y(1.0f);
+      point->mutable_normal()->set_y(1.0f);
+    }
+    if (volume) query.set_volume(*volume);
+    return stub_->QueryIrradiance(context().get(), query, reply);
+  };
+  v1::QueryIrradianceReply blend, fine, coarse, past;
+  ASSERT_TRUE(ask(std::nullopt, &blend).ok());
+  ASSERT_TRUE(ask(0u, &fine).ok());
+  ASSERT_TRUE(ask(1u, &coarse).ok());
+  auto red = [](const v1::QueryIrradianceReply& r, int i) { return r.irradiance(i).x(); };
+  std::printf(
+      "red at the centre: blend %.5f, fine %.5f, coarse %.5f; at x = 1.1: blend %.5f, "
+      "coarse %.5f\n",
+      red(blend, 0), red(fine, 0), red(coarse, 0), red(blend, 1), red(coarse, 1));
+  EXPECT_GT(red(fine, 0), 0.01f);
+  EXPECT_NEAR(red(blend, 0), red(fine, 0), 1e-5f);
+  EXPECT_NEAR(red(blend, 1), red(coarse, 1), 1e-5f);
+  EXPECT_GT(std::fabs(red(fine, 0) - red(coarse, 0)), 1e-3f);
+  const grpc::Status refused = ask(2u, &past);
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(refused.error_message().find("volume 2: the field has 2 volume(s)"), std::string::npos)
+      << refused.error_message();
 }
 
 }  // namespace
