@@ -86,10 +86,8 @@ float auto_exposure(const std::vector<float>& radiance) {
 
 // PSNR, SSIM and FLIP of the tone-mapped images, and the mean linear luminance over the
 // reference's.
-Result<ImageScores> score(const std::vector<uint8_t>& reference,
-                          const std::vector<float>& reference_radiance,
-                          const std::vector<uint8_t>& test, const std::vector<float>& test_radiance,
-                          uint32_t width, uint32_t height) {
+Result<ImageScores> score_ldr(const std::vector<uint8_t>& reference,
+                              const std::vector<uint8_t>& test, uint32_t width, uint32_t height) {
   const std::vector<float> a = to_unit_rgb(reference), b = to_unit_rgb(test);
   const metrics::RgbImageView va{width, height, a}, vb{width, height, b};
   ImageScores s;
@@ -97,6 +95,14 @@ Result<ImageScores> score(const std::vector<uint8_t>& reference,
   DDGI_ASSIGN_OR_RETURN(s.ssim, metrics::ssim(va, vb));
   DDGI_ASSIGN_OR_RETURN(const metrics::FlipResult f, metrics::flip(va, vb));
   s.flip = f.mean;
+  return s;
+}
+
+Result<ImageScores> score(const std::vector<uint8_t>& reference,
+                          const std::vector<float>& reference_radiance,
+                          const std::vector<uint8_t>& test, const std::vector<float>& test_radiance,
+                          uint32_t width, uint32_t height) {
+  DDGI_ASSIGN_OR_RETURN(ImageScores s, score_ldr(reference, test, width, height));
   s.mean_ratio = mean_ratio(test_radiance, reference_radiance);
   return s;
 }

@@ -60,8 +60,12 @@ Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJ
 // Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
 float auto_exposure(const std::vector<float>& radiance);
 
-// PSNR, SSIM and FLIP of the tone-mapped images (RGBA8), and the mean linear luminance of
-// `test_radiance` over the reference's.
+// PSNR, SSIM and FLIP of two tone-mapped images (RGBA8); mean_ratio is left 0.
+Result<ImageScores> score_ldr(const std::vector<uint8_t>& reference,
+                              const std::vector<uint8_t>& test, uint32_t width, uint32_t height);
+
+// score_ldr() of the tone-mapped images, and the mean linear luminance of `test_radiance` over
+// the reference's.
 Result<ImageScores> score(const std::vector<uint8_t>& reference,
                           const std::vector<float>& reference_radiance,
                           const std::vector<uint8_t>& test, const std::vector<float>& test_radiance,

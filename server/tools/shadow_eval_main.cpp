@@ -18,12 +18,10 @@
 #include "gi/shadow_params.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
-#include "metrics/flip.h"
-#include "metrics/pixel_error.h"
-#include "metrics/ssim.h"
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/eval_job.h"
 #include "tools/reference_render.h"
 #include "tools/scatter_plot.h"
 #include "tools/tool_support.h"
@@ -100,32 +98,6 @@ struct ModeRun {
   bool has_shadow_field = false;
   ShadowFieldParams shadow;
 };
-
-struct Scores {
-  double psnr = 0.0, ssim = 0.0, flip = 0.0;
-};
-
-// sRGB-encoded [0,1] floats from RGBA8, the form the metrics take.
-std::vector<float> to_unit_rgb(const std::vector<uint8_t>& rgba) {
-  std::vector<float> rgb;
-  rgb.reserve(rgba.size() / 4 * 3);
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
-  }
-  return rgb;
-}
-
-Result<Scores> score(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& test,
-                     uint32_t width, uint32_t height) {
-  const std::vector<float> a = to_unit_rgb(reference), b = to_unit_rgb(test);
-  const metrics::RgbImageView va{width, height, a}, vb{width, height, b};
-  Scores s;
-  DDGI_ASSIGN_OR_RETURN(s.psnr, metrics::psnr(va, vb));
-  DDGI_ASSIGN_OR_RETURN(s.ssim, metrics::ssim(va, vb));
-  DDGI_ASSIGN_OR_RETURN(const metrics::FlipResult flip, metrics::flip(va, vb));
-  s.flip = flip.mean;
-  return s;
-}
 
 // Exposure that maps the reference's 95th-percentile luminance to 0.8. Not the log-average:
 // a black background or a black shadow would pull it down and expose everything else into
@@ -310,8 +282,10 @@ Status report_mode(const ModeRun& run, Live& l, const ReferencePair& refs, const
   settings.view = View::kDirect;
   DDGI_ASSIGN_OR_RETURN(const auto update, l.gi->frame_update(run.mode, {}));
   DDGI_ASSIGN_OR_RETURN(const FrameResult direct, l.renderer->render(settings, update));
-  DDGI_ASSIGN_OR_RETURN(const Scores d, score(refs.second.ldr, direct.ldr, o.width, o.height));
-  DDGI_ASSIGN_OR_RETURN(const Scores f, score(refs.full.ldr, l.full.ldr, o.width, o.height));
+  DDGI_ASSIGN_OR_RETURN(const tools::ImageScores d,
+                        tools::score_ldr(refs.second.ldr, direct.ldr, o.width, o.height));
+  DDGI_ASSIGN_OR_RETURN(const tools::ImageScores f,
+                        tools::score_ldr(refs.full.ldr, l.full.ldr, o.width, o.height));
   std::string grid = "-", label = run.name == "shadow-rays" ? "rays" : "none";
   if (run.has_shadow_field) {
     const glm::ivec3 c = run.shadow.counts;
