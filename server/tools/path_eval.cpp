@@ -51,16 +51,23 @@ double quantile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
 }
 
-// The views scored along the path (every job.path_every seconds, the path's end included when
-// it falls on one) and their references, path-traced one after another with progress shown.
+// Frames of the walk: one per 1/path_rate seconds from the path's start to its end.
+int64_t path_frames(const EvalJob& job, const CameraPath& path) {
+  return std::llround(std::floor(path.duration() * job.path_rate)) + 1;
+}
+
+// The views scored along the path (the frame nearest every job.path_every seconds) and their
+// references, path-traced one after another with progress shown.
 Result<std::vector<PathView>> path_views(vk::Context& context, const EvalJob& job,
                                          const Scene& scene, const CameraPath& path,
                                          const std::string& stem) {
   const float yfov = default_camera(scene).yfov;
+  const int64_t frames = path_frames(job, path);
   std::vector<PathView> views;
-  for (int64_t k = 0; double(k) * job.path_every <= path.duration() + 1e-9; ++k) {
+  for (int64_t k = 0;; ++k) {
     PathView view;
     view.step = std::llround(double(k) * job.path_every * job.path_rate);
+    if (view.step >= frames || (k > 0 && view.step == views.back().step)) break;
     view.time = double(view.step) / job.path_rate;
     view.camera = path.camera_at(view.time, yfov);
     views.push_back(view);
@@ -144,14 +151,14 @@ Result<PathWalk> walk_config(vk::Context& context, const EvalJob& job, const Sce
   walk.probes = probe_count(gi->field()->params());
   walk.field_mib = double(field_gpu_bytes(gi->field()->params())) / (1024.0 * 1024.0);
   Walker walker{*gi, *renderer, job, walk, {}};
-  const int64_t steps = std::llround(std::floor(path.duration() * job.path_rate)) + 1;
+  const int64_t steps = path_frames(job, path);
   const float yfov = views.front().camera.yfov;
   size_t next = 0;  // the next scored view
   for (int64_t step = 0; step < steps; ++step) {
     const bool scored = next < views.size() && views[next].step == step;
-    // Frames use the exposure of the last scored view (only the LDR images depend on it).
-    const float exposure =
-        views[next > 0 && !scored ? next - 1 : std::min(next, views.size() - 1)].refs.exposure;
+    // Frames use the exposure of the last scored view (only the LDR images depend on it; view 0
+    // is frame 0, so there always is one).
+    const float exposure = (scored ? views[next] : views[next - 1]).refs.exposure;
     const Camera camera = path.camera_at(double(step) / job.path_rate, yfov);
     DDGI_TRY(walker.frame(step, camera, exposure, scored ? &views[next] : nullptr));
     if (scored) ++next;
