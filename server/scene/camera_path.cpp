@@ -17,8 +17,8 @@ using namespace json_fields;
 constexpr uint64_t kMaxPathFileBytes = 32ull << 20;
 constexpr uint32_t kMaxPathJsonDepth = 8;
 
-// The smallest length of (1 - s) a + s b over s in [0, 1] (a point's distance from a segment
-// through the origin's view: the view vector between two keyframes is linear in s).
+// The smallest length of (1 - s) a + s b over s in [0, 1]: the distance from the origin to the
+// segment from a to b (between two keyframes the view vector moves along such a segment).
 float min_length_between(glm::vec3 a, glm::vec3 b) {
   const glm::vec3 d = b - a;
   const float dd = glm::dot(d, d);
@@ -34,10 +34,8 @@ Status check_segment(const CameraKeyframe& a, const CameraKeyframe& b, size_t k)
   const float horizontal =
       min_length_between(glm::vec3(va.x, 0.0f, va.z), glm::vec3(vb.x, 0.0f, vb.z));
   if (!(horizontal > 1e-3f * longest)) {
-    const std::string where = "keyframes[" + std::to_string(k) + "]" +
-                              (a.time == b.time ? "" : " to [" + std::to_string(k + 1) + "]");
-    return invalid_argument(where +
-                            ": the camera would look straight up or down, or at its own "
+    return invalid_argument("keyframes[" + std::to_string(k) + "] to [" + std::to_string(k + 1) +
+                            "]: the camera would look straight up or down, or at its own "
                             "position (target - position must keep a horizontal part)");
   }
   return ok_status();
