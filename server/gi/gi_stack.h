@@ -68,6 +68,9 @@ class GiStack {
   // The mode the shadow field is updated in for frames in `frame_mode` (shadow_field_mode()).
   DirectMode shadow_update_mode(DirectMode frame_mode) const;
 
+  // A tracking irradiance field (track_camera) follows `camera` (IrradianceField::track); the
+  // tools call it with their camera before warm_up(), so that the field is placed around it.
+  Status track(glm::vec3 camera) { return field_ ? field_->track(camera) : ok_status(); }
   // Converges new fields: `count` shadow-field updates, then the irradiance field's warm_up
   // (fast convergence at low hysteresis first).
   Status warm_up(uint32_t count);

@@ -194,6 +194,7 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
                                                         context.default_backend()));
   DDGI_ASSIGN_OR_RETURN(auto target,
                         FrameTarget::create(context, job.settings.width, job.settings.height));
+  DDGI_TRY(gi->track(job.settings.camera.position));
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   tools::PassTable table, after_scroll, ordinary;
   std::vector<double> scroll_ms;
