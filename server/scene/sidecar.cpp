@@ -1,13 +1,10 @@
 #include "scene/sidecar.h"
 
 #include <cmath>
-#include <set>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "scene/exr_image.h"
-#include "scene/finite.h"
 #include "scene/json_fields.h"
 #include "scene/json_precheck.h"
 #include "scene/scene_files.h"
