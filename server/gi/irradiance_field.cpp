@@ -409,6 +409,16 @@ std::vector<FieldVolume> IrradianceField::volumes() const {
   return grids;
 }
 
+Result<FieldVolume> IrradianceField::volume(uint32_t index) const {
+  if (index >= volumes_.size()) {
+    return invalid_argument("volume " + std::to_string(index) + ": the field has " +
+                            std::to_string(volumes_.size()) + " volume(s), 0 to " +
+                            std::to_string(volumes_.size() - 1) +
+                            " (FieldParams.volumes lists them)");
+  }
+  return volumes_[index].grid;
+}
+
 bool IrradianceField::scrolled() const {
   return std::any_of(volumes_.begin(), volumes_.end(),
                      [](const VolumeState& v) { return v.scroll != glm::ivec3(0); });
@@ -784,11 +794,9 @@ Status IrradianceField::warm_up(uint32_t count, DirectMode direct_mode) {
 
 Result<std::vector<glm::vec3>> IrradianceField::query(const std::vector<IrradianceQuery>& queries,
                                                       std::optional<uint32_t> volume) {
-  if (volume && *volume >= volumes_.size()) {
-    return invalid_argument("volume " + std::to_string(*volume) + ": the field has " +
-                            std::to_string(volumes_.size()) + " volume(s), 0 to " +
-                            std::to_string(volumes_.size() - 1) +
-                            " (FieldParams.volumes lists them)");
+  if (volume) {
+    const Result<FieldVolume> chosen = this->volume(*volume);
+    if (!chosen.ok()) return chosen.error();
   }
   const uint32_t mode = volume ? gpu::kQueryVolume0 + *volume : gpu::kQueryBlended;
   std::vector<gpu::FieldQuery> input;

@@ -70,6 +70,8 @@ class IrradianceField {
   // The field's volumes as they are now (docs/cascades.md): volume 0 is the grid of params(),
   // the others its cascades.
   std::vector<FieldVolume> volumes() const;
+  // Volume `index` as it is now, or an error naming how many volumes there are.
+  Result<FieldVolume> volume(uint32_t index) const;
   // Moves `volume` by `cells` whole cells (its origin by cells x spacing) as a 3D circular
   // buffer (docs/cascades.md): probes whose world position stays keep their slot, maps and
   // state bit for bit; the planes that leave are re-initialised on the other side (maps

@@ -216,18 +216,6 @@ Result<AtlasImage> read_float_image(vk::Context& context, const vk::Image& image
   return atlas;
 }
 
-// Volume `index` of the field as it is now, or an error naming the volumes there are.
-Result<FieldVolume> requested_volume(const IrradianceField& field, uint32_t index) {
-  const std::vector<FieldVolume> volumes = field.volumes();
-  if (index >= volumes.size()) {
-    return invalid_argument("volume " + std::to_string(index) + ": the field has " +
-                            std::to_string(volumes.size()) + " volume(s), 0 to " +
-                            std::to_string(volumes.size() - 1) +
-                            " (FieldParams.volumes lists them)");
-  }
-  return volumes[index];
-}
-
 // The probes of `volume` from a list of every volume's (grid order, volume after volume).
 template <typename T>
 std::vector<T> volume_probes(const std::vector<T>& all, const FieldVolume& volume) {
@@ -275,7 +263,7 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
     case v1::ATLAS_KIND_IRRADIANCE:
     case v1::ATLAS_KIND_DISTANCE: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, field->volume(request.volume));
       DDGI_ASSIGN_OR_RETURN(const AtlasImage all, request.kind == v1::ATLAS_KIND_IRRADIANCE
                                                       ? field->read_irradiance_atlas()
                                                       : field->read_distance_atlas());
@@ -307,13 +295,13 @@ Result<std::pair<v1::AtlasMetadata, AtlasImage>> read_atlas(vk::Context& context
     }
     case v1::ATLAS_KIND_SH: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, field->volume(request.volume));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ShProbe> probes, field->read_sh_probes());
       return sh_dump(*field, volume, volume_probes(probes, volume), request.format);
     }
     case v1::ATLAS_KIND_PROBE_STATES: {
       if (field == nullptr) return failed_precondition("this session has no irradiance field");
-      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, requested_volume(*field, request.volume));
+      DDGI_ASSIGN_OR_RETURN(const FieldVolume volume, field->volume(request.volume));
       DDGI_ASSIGN_OR_RETURN(const std::vector<gpu::ProbeState> states, field->read_probe_states());
       return probe_state_dump(*field, volume, volume_probes(states, volume), request.format);
     }
