@@ -31,14 +31,7 @@ std::vector<std::string> row_cells(const std::string& out, const std::string& fi
   std::istringstream lines(out);
   std::string line;
   while (std::getline(lines, line)) {
-    std::vector<std::string> cells;
-    std::istringstream parts(line);
-    std::string cell;
-    std::getline(parts, cell, '|');  // before the first bar
-    while (std::getline(parts, cell, '|')) {
-      const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
-      cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-    }
+    const std::vector<std::string> cells = markdown_cells(line);
     if (!cells.empty() && cells[0] == first_cell && cells.size() > 5 && cells[5] == path) {
       return cells;
     }

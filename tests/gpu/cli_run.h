@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace ddgi::test {
 
@@ -23,6 +24,19 @@ inline std::string slurp(const std::filesystem::path& path) {
   std::stringstream text;
   text << file.rdbuf();
   return text.str();
+}
+
+// The cells of a markdown table row ("| a | b |"), trimmed; what the tools print their tables as.
+inline std::vector<std::string> markdown_cells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::istringstream parts(row);
+  std::string cell;
+  std::getline(parts, cell, '|');  // before the first bar
+  while (std::getline(parts, cell, '|')) {
+    const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
+    cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+  }
+  return cells;
 }
 
 // `executable` with `arguments` (shell words), run in DDGI_SOURCE_DIR; its output files go into

@@ -17,26 +17,13 @@
 namespace ddgi::test {
 namespace {
 
-// The cells of a markdown table row, trimmed.
-std::vector<std::string> cells(const std::string& row) {
-  std::vector<std::string> out;
-  std::stringstream in(row);
-  std::string cell;
-  std::getline(in, cell, '|');  // before the first bar
-  while (std::getline(in, cell, '|')) {
-    const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
-    out.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-  }
-  return out;
-}
-
 // The summary row (second table) of configuration `name`.
 std::vector<std::string> summary_row(const std::string& out, const std::string& name) {
   const size_t summary = out.find("| configuration | probes |");
   std::stringstream in(out.substr(summary == std::string::npos ? out.size() : summary));
   std::string line;
   while (std::getline(in, line)) {
-    const std::vector<std::string> c = cells(line);
+    const std::vector<std::string> c = markdown_cells(line);
     if (!c.empty() && c[0] == name) return c;
   }
   return {};
