@@ -125,4 +125,16 @@ Result<std::vector<double>> Flags::get_doubles(const std::string& name, size_t m
   return values;
 }
 
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> pieces(1);
+  for (const char c : text) {
+    if (c == separator) {
+      pieces.emplace_back();
+    } else {
+      pieces.back() += c;
+    }
+  }
+  return pieces;
+}
+
 }  // namespace ddgi

@@ -37,6 +37,10 @@ class Flags {
   std::vector<std::string> positional_;
 };
 
+// The pieces of `text` between `separator`s, empty ones included ("" is one empty piece), so
+// that a caller can refuse "1,,2" by name.
+std::vector<std::string> split(const std::string& text, char separator);
+
 // Strict parsing of a whole string; errors name `what`.
 Result<double> parse_double(const std::string& text, const std::string& what);
 Result<int64_t> parse_int(const std::string& text, const std::string& what);

@@ -12,6 +12,73 @@ namespace {
 constexpr int kMaxCountPerAxis = 512;
 constexpr uint64_t kMaxProbes = 4'194'304;
 
+// static_volumes: each volume "origin/spacing/counts" in the grid entries' own text forms and
+// ranges (probe_grid.h), '|' between volumes, empty for none.
+ParamSpec<IrradianceFieldParams> static_volumes_param() {
+  using P = IrradianceFieldParams;
+  static const std::vector<ParamSpec<GridPlacement>> grid =
+      grid_params<GridPlacement>(kMaxCountPerAxis, kMaxProbes);
+  const std::string name = "static_volumes";
+  const std::string too_many =
+      name + " and cascades make more than " + std::to_string(gpu::kMaxFieldVolumes) + " volumes";
+  ParamSpec<P> spec;
+  spec.name = name;
+  spec.help =
+      "grids beside the field's, each origin/spacing/counts (e.g. "
+      "0,0,0/0.25,0.25,0.25/16,8,16), '|' between them; empty: none";
+  spec.parse = [name](P& p, const std::string& text) -> Status {
+    std::vector<GridPlacement> volumes;
+    const std::vector<std::string> pieces =
+        text.empty() ? std::vector<std::string>{} : split(text, '|');
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      const std::string what = name + "[" + std::to_string(i) + "]";
+      const std::vector<std::string> parts = split(pieces[i], '/');
+      if (parts.size() != grid.size()) {
+        return invalid_argument(what + " must be origin/spacing/counts (got '" + pieces[i] + "')");
+      }
+      GridPlacement volume;
+      for (size_t k = 0; k < grid.size(); ++k) {
+        const Status status = grid[k].parse(volume, parts[k]);
+        if (!status.ok()) return invalid_argument(what + ": " + status.error().message);
+      }
+      volumes.push_back(volume);
+    }
+    p.static_volumes = volumes;
+    return ok_status();
+  };
+  spec.format = [](const P& p) {
+    std::string text;
+    for (const GridPlacement& volume : p.static_volumes) {
+      if (!text.empty()) text += "|";
+      for (size_t k = 0; k < grid.size(); ++k) text += (k ? "/" : "") + grid[k].format(volume);
+    }
+    return text;
+  };
+  spec.check = [name, too_many](const P& p, const std::string& prefix) -> Status {
+    for (size_t i = 0; i < p.static_volumes.size(); ++i) {
+      for (const ParamSpec<GridPlacement>& entry : grid) {
+        DDGI_TRY(entry.check(p.static_volumes[i], prefix + name + "[" + std::to_string(i) + "] "));
+      }
+    }
+    if (p.cascades + p.static_volumes.size() <= gpu::kMaxFieldVolumes) return ok_status();
+    return invalid_argument(prefix + too_many + " (" + std::to_string(p.static_volumes.size()) +
+                            " and " + std::to_string(p.cascades) + ")");
+  };
+  // One volume made of each grid entry's own cases, then none, and one volume too many.
+  for (const ParamSpec<GridPlacement>& entry : grid) {
+    for (const ParamExample<GridPlacement>& example : entry.examples) {
+      GridPlacement volume;
+      example.apply(volume);
+      spec.examples.push_back({example.value, [volume](P& p) { p.static_volumes = {volume}; },
+                               example.refusal.empty() ? "" : name + "[0] " + example.refusal});
+    }
+  }
+  spec.examples.push_back({"", [](P& p) { p.static_volumes.clear(); }, ""});
+  spec.examples.push_back({std::to_string(gpu::kMaxFieldVolumes) + " volumes",
+                           [](P& p) { p.static_volumes.resize(gpu::kMaxFieldVolumes); }, too_many});
+  return spec;
+}
+
 }  // namespace
 
 const ParamTable<IrradianceFieldParams>& field_param_table() {
@@ -26,6 +93,7 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
                         "volumes of `counts` probes around one centre, each coarser"),
           param::number("cascade_spacing_ratio", &P::cascade_spacing_ratio, 1.0f, 16.0f,
                         "spacing of each cascade over the previous one's"),
+          static_volumes_param(),
           param::number("rays_per_probe", &P::rays_per_probe, 1, 1024,
                         "blended rays per probe per update"),
           param::number("fixed_rays", &P::fixed_rays, 0, 256,
@@ -99,7 +167,9 @@ DirectMode shadow_field_mode(DirectMode frame_mode, const IrradianceFieldParams*
 }
 
 uint64_t probe_count(const IrradianceFieldParams& p) {
-  return grid_probe_count(p.counts) * p.cascades;
+  uint64_t probes = grid_probe_count(p.counts) * p.cascades;
+  for (const GridPlacement& volume : p.static_volumes) probes += grid_probe_count(volume.counts);
+  return probes;
 }
 
 std::vector<FieldVolume> field_volumes(const IrradianceFieldParams& p) {
@@ -112,9 +182,24 @@ std::vector<FieldVolume> field_volumes(const IrradianceFieldParams& p) {
     volume.spacing = p.spacing * scale;
     volume.origin = v == 0 ? p.origin : centre - volume.spacing * half_cells;
     volume.counts = p.counts;
-    volume.first_probe = static_cast<uint32_t>(v * grid_probe_count(p.counts));
+    volume.cascade = v;
     volumes.push_back(volume);
     scale *= p.cascade_spacing_ratio;
+  }
+  for (uint32_t s = 0; s < p.static_volumes.size(); ++s) {
+    const GridPlacement& placement = p.static_volumes[s];
+    volumes.push_back({placement.origin, placement.spacing, placement.counts, 0, 0, s});
+  }
+  auto coarseness = [](const FieldVolume& v) {
+    return std::max({v.spacing.x, v.spacing.y, v.spacing.z});
+  };
+  std::stable_sort(volumes.begin(), volumes.end(), [&](const FieldVolume& a, const FieldVolume& b) {
+    return coarseness(a) < coarseness(b);
+  });
+  uint64_t first = 0;
+  for (FieldVolume& volume : volumes) {
+    volume.first_probe = static_cast<uint32_t>(first);
+    first += grid_probe_count(volume.counts);
   }
   return volumes;
 }
@@ -144,9 +229,11 @@ Status validate(const IrradianceFieldParams& p) {
   DDGI_TRY(field_param_table().check(p));
   if (probe_count(p) > kMaxProbes) {
     return invalid_argument("cascades=" + std::to_string(p.cascades) + " of " +
-                            std::to_string(grid_probe_count(p.counts)) + " probes make " +
+                            std::to_string(grid_probe_count(p.counts)) + " probes and " +
+                            std::to_string(p.static_volumes.size()) + " static volume(s) make " +
                             std::to_string(probe_count(p)) + " probes; at most " +
-                            std::to_string(kMaxProbes) + " fit (use fewer cascades or probes)");
+                            std::to_string(kMaxProbes) +
+                            " fit (use fewer cascades, volumes or probes)");
   }
   if ((p.relocation_iterations > 0 || p.classification) && p.fixed_rays < 8) {
     return invalid_argument("relocation and classification need fixed_rays >= 8 (got " +
@@ -204,14 +291,19 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
 }
 
 IrradianceFieldParams default_field_params(const Scene& scene) {
+  static_assert(kMaxSceneProbeVolumes + 1 == gpu::kMaxFieldVolumes);
+  IrradianceFieldParams params;
   if (scene.probe_grid) {
-    IrradianceFieldParams params;
     params.origin = scene.probe_grid->origin;
     params.spacing = scene.probe_grid->spacing;
     params.counts = scene.probe_grid->counts;
-    return params;
+  } else {
+    params = fit_grid_to_bounds(scene.world_bounds());
   }
-  return fit_grid_to_bounds(scene.world_bounds());
+  for (const ProbeGridHint& volume : scene.probe_volumes) {
+    params.static_volumes.push_back({volume.origin, volume.spacing, volume.counts});
+  }
+  return params;
 }
 
 uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {

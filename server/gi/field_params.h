@@ -16,6 +16,7 @@
 
 #include "core/result.h"
 #include "gi/param_table.h"
+#include "gi/probe_grid.h"
 #include "gpu_scene/frame_types.h"
 #include "scene/scene.h"
 #include "shared/field_data.h"
@@ -54,6 +55,12 @@ struct IrradianceFieldParams {
   // Each cascade's spacing over the previous one's, [1, 16]. 2: the thesis's pyramid (each
   // level covers 8x the volume at the same probe count).
   float cascade_spacing_ratio = 2.0f;
+  // Static volumes (docs/cascades.md): grids of their own beside the field's grid or cascades,
+  // placed by the scene (sidecar `probe_volumes`) or the caller, e.g. a fine grid in one room of
+  // a street. They never track the camera. All volumes are sampled finest first (by each one's
+  // largest spacing). At most 8 volumes in all (kMaxFieldVolumes), cascades included. None by
+  // default.
+  std::vector<GridPlacement> static_volumes;
 
   // --- Tracing ------------------------------------------------------------------------------
   // Rays per probe per update that are shaded and blended, in [1, 1024]. 128 keeps noise low at
@@ -193,14 +200,24 @@ IrradianceFieldParams default_field_params(const Scene& scene);
 uint64_t probe_count(const IrradianceFieldParams& params);
 
 // One volume of a field (docs/cascades.md): its grid and where its probes start among the
-// field's slots. Volume 0 is the grid of the field's origin, spacing and counts.
+// field's slots.
 struct FieldVolume {
   glm::vec3 origin{0.0f};
   glm::vec3 spacing{1.0f};
   glm::ivec3 counts{1};
   uint32_t first_probe = 0;
+  // What placed it: cascade `cascade` of the field's grid (0: the grid itself), or, when set,
+  // params.static_volumes[*static_volume].
+  uint32_t cascade = 0;
+  std::optional<uint32_t> static_volume;
+  // Whether it follows the camera when the field tracks it (the cascades do, static volumes not).
+  bool tracks(const IrradianceFieldParams& params) const {
+    return params.track_camera && !static_volume;
+  }
 };
-// The volumes of `params` as placed at creation: the cascades around volume 0's centre.
+// The volumes of `params` as placed at creation, finest first (blend order, and the order of
+// their probes among the field's slots): the cascades around the grid's centre and the static
+// volumes, each kept where the largest of its spacings puts it (cascades first on ties).
 std::vector<FieldVolume> field_volumes(const IrradianceFieldParams& params);
 
 // A scrolling grid's addressing (FieldConstants::scroll, shaders/common/field.glsl): the slot

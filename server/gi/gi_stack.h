@@ -70,7 +70,9 @@ class GiStack {
 
   // A tracking irradiance field (track_camera) follows `camera` (IrradianceField::track); the
   // tools call it with their camera before warm_up(), so that the field is placed around it.
-  Status track(glm::vec3 camera) { return field_ ? field_->track(camera) : ok_status(); }
+  void track(glm::vec3 camera) {
+    if (field_) field_->track(camera);
+  }
   // Converges new fields: `count` shadow-field updates, then the irradiance field's warm_up
   // (fast convergence at low hysteresis first).
   Status warm_up(uint32_t count);

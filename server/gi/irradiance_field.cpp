@@ -13,15 +13,11 @@
 namespace ddgi {
 namespace {
 
-constexpr uint32_t kMaxTimedPasses = 16;
+// An update's passes, and a scroll's start before them (relocations + 1 traces and management
+// passes each, and the start).
+constexpr uint32_t kMaxTimedPasses = 64;
 
-// `pass` with its declared reads and writes.
-vk::Pass with_access(vk::Pass pass, std::vector<vk::ResourceRef> reads,
-                     std::vector<vk::ResourceRef> writes) {
-  pass.reads = std::move(reads);
-  pass.writes = std::move(writes);
-  return pass;
-}
+using vk::with_access;
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
 // field_blend: one workgroup per probe. 64 invocations: the default maps (8x8 irradiance, 16x16
 // distance texels) in four full rounds.
@@ -60,7 +56,7 @@ bool grid_changed(const IrradianceFieldParams& a, const IrradianceFieldParams& b
          a.min_frontface_distance != b.min_frontface_distance ||
          a.backface_threshold != b.backface_threshold || a.fixed_rays != b.fixed_rays ||
          a.irradiance_texels != b.irradiance_texels || a.distance_texels != b.distance_texels ||
-         a.basis != b.basis || a.cascades != b.cascades;
+         a.basis != b.basis || a.cascades != b.cascades || a.static_volumes != b.static_volumes;
 }
 
 // Whether a field of `params` fits the GPU budget once the `held_bytes` it replaces are freed.
@@ -198,9 +194,25 @@ Status IrradianceField::create_resources() {
   const uint64_t sh_probes = params_.basis == ProbeBasis::kSh ? probes : 1;
   DDGI_ASSIGN_OR_RETURN(sh_, vk::Buffer::create(context_, sh_probes * sizeof(gpu::ShProbe), storage,
                                                 vk::MemoryUsage::kDeviceLocal, "SH probes"));
-  DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, probes * sizeof(uint32_t),
-                                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+  // Two halves: the active probes the updates take, and the probes a scroll starts.
+  DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, 2 * probes * sizeof(uint32_t),
+                                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                         vk::MemoryUsage::kUpload, "probe list"));
+  DDGI_ASSIGN_OR_RETURN(scroll_states_,
+                        vk::Buffer::create(context_, probes * sizeof(gpu::ProbeState),
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUsage::kReadback, "scrolled probe states"));
+  const VkDeviceSize tile_bytes =
+      std::max(uint64_t(params_.irradiance_texels + 2 * gpu::kAtlasBorder) *
+                   (params_.irradiance_texels + 2 * gpu::kAtlasBorder) * 16u,
+               uint64_t(params_.distance_texels + 2 * gpu::kAtlasBorder) *
+                   (params_.distance_texels + 2 * gpu::kAtlasBorder) * 8u);
+  DDGI_ASSIGN_OR_RETURN(
+      zero_tile_,
+      vk::Buffer::create(context_, tile_bytes,
+                         VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::MemoryUsage::kDeviceLocal, "zero map tile"));
   const VkImageUsageFlags image_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                         VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -255,6 +267,9 @@ Status IrradianceField::set_update_path(FieldUpdatePath path) {
 Status IrradianceField::reset() {
   update_index_ = 0;
   volumes_.clear();
+  entering_.clear();  // every probe starts over below
+  unread_.clear();
+  unread_serial_.reset();
   for (const FieldVolume& grid : field_volumes(params_)) {
     volumes_.push_back({grid, grid.origin, glm::ivec3(0), glm::ivec3(0)});
   }
@@ -277,6 +292,7 @@ Status IrradianceField::reset() {
       vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
     }
     vkCmdFillBuffer(cmd, sh_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, zero_tile_.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier_all(cmd);
   }));
   if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
@@ -329,6 +345,24 @@ vk::Pass IrradianceField::probe_workgroup_pass(const char* name, const vk::Kerne
   return pass;
 }
 
+void IrradianceField::add_management_passes(std::vector<vk::Pass>& passes,
+                                            const LinearWork& fixed_rays,
+                                            uint32_t relocations) const {
+  // (trace fixed rays, relocate) x relocations, trace fixed rays, classify.
+  auto fixed_rays_then = [&](uint32_t mode) {
+    passes.push_back(with_access(linear_pass("management trace", trace_, fixed_rays),
+                                 {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
+                                 {&rays_}));
+    LinearWork manage = fixed_rays;
+    manage.per_probe = 1;
+    manage.mode = mode;
+    passes.push_back(with_access(linear_pass("probe management", manage_, manage),
+                                 {&rays_, &probe_list_}, {&probes_}));
+  };
+  for (uint32_t i = 0; i < relocations; ++i) fixed_rays_then(gpu::kProbeModeRelocate);
+  if (params_.classification) fixed_rays_then(gpu::kProbeModeClassify);
+}
+
 Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool relocate,
                                       const std::vector<Bounds>& dynamic_regions) {
   if (probes.empty()) return ok_status();
@@ -336,19 +370,10 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
   probe_list_is_active_ = false;
   const uint32_t n = static_cast<uint32_t>(probes.size());
   const Constants c = constants(DirectMode::kTracedShadows);
-  // One submission: (trace fixed rays, relocate) x iterations, trace fixed rays, classify.
   std::vector<vk::Pass> passes = {
       vk::upload_pass("field constants", vk::PassGroup::kIrradianceField, constants_, c)};
-  auto fixed_rays_then = [&](uint32_t mode) {
-    passes.push_back(with_access(linear_pass("field trace", trace_, {0, n, n, params_.fixed_rays}),
-                                 {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
-                                 {&rays_}));
-    passes.push_back(with_access(linear_pass("probe management", manage_, {0, n, n, 1, mode}),
-                                 {&rays_, &probe_list_}, {&probes_}));
-  };
-  const uint32_t iterations = relocate ? params_.relocation_iterations : 0;
-  for (uint32_t i = 0; i < iterations; ++i) fixed_rays_then(gpu::kProbeModeRelocate);
-  if (params_.classification) fixed_rays_then(gpu::kProbeModeClassify);
+  add_management_passes(passes, {0, n, n, params_.fixed_rays},
+                        relocate ? params_.relocation_iterations : 0);
   DDGI_TRY(context_.submit_and_wait(
       [&](VkCommandBuffer cmd) { vk::record_passes(cmd, nullptr, passes); }));
   if (!params_.classification) return ok_status();
@@ -384,11 +409,12 @@ Status IrradianceField::manage_probes(const std::vector<uint32_t>& probes, bool 
 }
 
 Status require_one_volume(const IrradianceField& field, const std::string& what) {
-  if (field.params().cascades == 1) return ok_status();
-  return failed_precondition(what + " of a field of " + std::to_string(field.params().cascades) +
-                             " cascades is not supported yet: per-volume streams are not built "
+  const size_t volumes = field.volumes().size();
+  if (volumes == 1) return ok_status();
+  return failed_precondition(what + " of a field of " + std::to_string(volumes) +
+                             " volumes is not supported yet: per-volume streams are not built "
                              "(docs/cascades.md; DumpAtlas dumps one volume at a time); use "
-                             "cascades=1");
+                             "cascades=1 and no static_volumes");
 }
 
 uint32_t IrradianceField::volume_of(uint32_t slot) const {
@@ -424,120 +450,8 @@ bool IrradianceField::scrolled() const {
                      [](const VolumeState& v) { return v.scroll != glm::ivec3(0); });
 }
 
-void IrradianceField::move_volume(uint32_t volume, glm::ivec3 cells,
-                                  std::vector<uint32_t>& entering) {
-  VolumeState& v = volumes_[volume];
-  FieldVolume& g = v.grid;
-  v.scrolled_cells += cells;
-  g.origin = v.unscrolled_origin + glm::vec3(v.scrolled_cells) * g.spacing;
-  if (volume == 0) params_.origin = g.origin;
-  // Nothing stays: every probe enters, in the volume's new place.
-  const bool everything = glm::any(glm::greaterThanEqual(glm::abs(cells), g.counts));
-  v.scroll = ((v.scroll + cells) % g.counts + g.counts) % g.counts;
-  const uint32_t probes = static_cast<uint32_t>(grid_probe_count(g.counts));
-  for (uint32_t local = 0; local < probes; ++local) {
-    const glm::ivec3 c = probe_coord(g.counts, v.scroll, local);
-    bool entered = everything;
-    for (int axis = 0; axis < 3; ++axis) {
-      // A scroll by +k brings in the last k planes of the axis, by -k the first k.
-      entered = entered || (cells[axis] > 0 && c[axis] >= g.counts[axis] - cells[axis]) ||
-                (cells[axis] < 0 && c[axis] < -cells[axis]);
-    }
-    if (entered) entering.push_back(g.first_probe + local);
-  }
-}
-
-Status IrradianceField::start_probes(const std::vector<uint32_t>& entering) {
-  DDGI_TRY(clear_probes(entering));
-  if (params_.relocation_iterations == 0 && !params_.classification) return ok_status();
-  return manage_probes(entering, params_.relocation_iterations > 0, {});
-}
-
-Status IrradianceField::scroll(uint32_t volume, glm::ivec3 cells) {
-  if (volume >= volumes_.size()) {
-    return invalid_argument("volume " + std::to_string(volume) + " of a field of " +
-                            std::to_string(volumes_.size()));
-  }
-  if (cells == glm::ivec3(0)) return ok_status();
-  std::vector<uint32_t> entering;
-  move_volume(volume, cells, entering);
-  return start_probes(entering);
-}
-
-bool IrradianceField::tracking_would_scroll(glm::vec3 camera) const {
-  if (!params_.track_camera) return false;
-  return std::any_of(volumes_.begin(), volumes_.end(), [&](const VolumeState& v) {
-    return tracking_scroll(v.grid, camera) != glm::ivec3(0);
-  });
-}
-
-Status IrradianceField::track(glm::vec3 camera) {
-  if (!params_.track_camera) return ok_status();
-  tracked_camera_ = camera;
-  std::vector<uint32_t> entering;
-  for (uint32_t v = 0; v < volumes_.size(); ++v) {
-    const glm::ivec3 cells = tracking_scroll(volumes_[v].grid, camera);
-    if (cells != glm::ivec3(0)) move_volume(v, cells, entering);
-  }
-  if (entering.empty()) return ok_status();
-  return start_probes(entering);
-}
-
-Status IrradianceField::clear_probes(const std::vector<uint32_t>& slots) {
-  const uint32_t irradiance_tile = params_.irradiance_texels + 2 * gpu::kAtlasBorder;
-  const uint32_t distance_tile = params_.distance_texels + 2 * gpu::kAtlasBorder;
-  const VkDeviceSize tile_bytes =
-      std::max(irradiance_tile * irradiance_tile * 16u, distance_tile * distance_tile * 8u);
-  if (!zero_tile_ || zero_tile_.size() < tile_bytes) {
-    DDGI_ASSIGN_OR_RETURN(
-        zero_tile_,
-        vk::Buffer::create(context_, tile_bytes,
-                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                           vk::MemoryUsage::kDeviceLocal, "zero map tile"));
-  }
-  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_slots());
-  for (uint32_t p : slots) states[p] = {glm::vec3(0.0f), gpu::kProbeResetHistory};
-  DDGI_TRY(vk::update_buffer(
-      context_, probes_,
-      {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
-  // One copy region per probe and map: the tiles of `slots` in each atlas.
-  auto tiles = [&](uint32_t tile) {
-    std::vector<VkBufferImageCopy> regions;
-    for (uint32_t p : slots) {
-      VkBufferImageCopy r{};
-      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      r.imageOffset = {int32_t(p % layout_.tiles_per_row * tile),
-                       int32_t(p / layout_.tiles_per_row * tile), 0};
-      r.imageExtent = {tile, tile, 1};
-      regions.push_back(r);
-    }
-    return regions;
-  };
-  const bool sh = params_.basis == ProbeBasis::kSh;
-  const Constants c = constants(DirectMode::kTracedShadows);
-  return context_.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), c.data());
-    vkCmdFillBuffer(cmd, zero_tile_.handle(), 0, VK_WHOLE_SIZE, 0);
-    vk::barrier_all(cmd);
-    if (sh) {
-      for (uint32_t p : slots) {
-        vkCmdFillBuffer(cmd, sh_.handle(), VkDeviceSize(p) * sizeof(gpu::ShProbe),
-                        sizeof(gpu::ShProbe), 0);
-      }
-    } else if (!slots.empty()) {  // (copies need at least one region)
-      const std::vector<VkBufferImageCopy> irradiance = tiles(irradiance_tile);
-      const std::vector<VkBufferImageCopy> distance = tiles(distance_tile);
-      vkCmdCopyBufferToImage(cmd, zero_tile_.handle(), irradiance_.handle(),
-                             VK_IMAGE_LAYOUT_GENERAL, uint32_t(irradiance.size()),
-                             irradiance.data());
-      vkCmdCopyBufferToImage(cmd, zero_tile_.handle(), distance_.handle(), VK_IMAGE_LAYOUT_GENERAL,
-                             uint32_t(distance.size()), distance.data());
-    }
-    vk::barrier_all(cmd);
-  });
-}
-
 Status IrradianceField::prepare() {
+  collect_scroll_verdicts();
   if (scene_.move_count() == seen_moves_) return ok_status();
   bool everything = false;
   std::vector<Bounds> regions = scene_.moved_regions(seen_moves_, &everything);
@@ -663,7 +577,7 @@ IrradianceField::Constants IrradianceField::constants(DirectMode direct_mode) co
 
 std::pair<glm::vec3, glm::vec3> IrradianceField::blend_box(const FieldVolume& g) const {
   const glm::vec3 half_cells = 0.5f * glm::vec3(g.counts - 1);
-  if (params_.track_camera && tracked_camera_) {
+  if (g.tracks(params_) && tracked_camera_) {
     // Centred on the camera, tightened by two cells from the grid's half extent (2021 paper,
     // sec. 7.3): with the grid's centre within a cell of the camera, the weight is 0 before the
     // grid's edge however the grid last leapfrogged, so a scroll changes no weight.
@@ -706,6 +620,7 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
 
   std::vector<vk::Pass> passes = {vk::upload_pass(
       "field constants", vk::PassGroup::kIrradianceField, constants_, constants(direct_mode))};
+  add_start_passes(passes);  // of the probes a scroll (track()) brought in
   add_lighting_passes(passes, last_update_rays_, direct_mode);
   ++update_index_;
   return passes;
@@ -777,6 +692,7 @@ Result<std::vector<vk::PassTime>> IrradianceField::update(uint32_t count, Direct
       sets_.timer().begin_frame(cmd);
       vk::record_passes(cmd, &sets_.timer(), passes);
     }));
+    adopt_scroll_verdicts();  // of a scroll this update started: its submission is done
   }
   context_.collect_garbage();
   return sets_.timer().read();

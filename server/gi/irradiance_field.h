@@ -47,7 +47,8 @@ enum class FieldUpdatePath {
 
 class IrradianceField;
 // Probe streams describe one grid: FAILED_PRECONDITION naming `what` for a field of several
-// volumes (cascades), whose per-volume streams are not built yet (docs/cascades.md).
+// volumes (cascades, static volumes), whose per-volume streams are not built yet
+// (docs/cascades.md).
 Status require_one_volume(const IrradianceField& field, const std::string& what);
 
 class IrradianceField {
@@ -67,8 +68,8 @@ class IrradianceField {
   // Drops all history: every probe starts over at its next update.
   Status reset();
 
-  // The field's volumes as they are now (docs/cascades.md): volume 0 is the grid of params(),
-  // the others its cascades.
+  // The field's volumes as they are now, finest first (docs/cascades.md): the grid of params()
+  // and its cascades, and the static volumes (FieldVolume says which is which).
   std::vector<FieldVolume> volumes() const;
   // Volume `index` as it is now, or an error naming how many volumes there are.
   Result<FieldVolume> volume(uint32_t index) const;
@@ -76,16 +77,17 @@ class IrradianceField {
   // buffer (docs/cascades.md): probes whose world position stays keep their slot, maps and
   // state bit for bit; the planes that leave are re-initialised on the other side (maps
   // cleared, history reset, relocated and classified) and traced by the next update. A move of
-  // the whole grid or more starts the volume over. Submits GPU work and rewrites the probe
-  // list: no frame or update that uses the field may be in flight.
-  Status scroll(uint32_t volume, glm::ivec3 cells);
+  // the whole grid or more starts the volume over. `start`: at once, in a submission of its own
+  // waited for, or in the next update's passes (as track() does).
+  enum class ScrollStart { kNow, kInNextUpdate };
+  Status scroll(uint32_t volume, glm::ivec3 cells, ScrollStart start = ScrollStart::kNow);
   // The circular buffer's phase of `volume` (FieldConstants::scroll).
   glm::ivec3 scroll_phase(uint32_t volume = 0) const { return volumes_.at(volume).scroll; }
-  // A tracking field (track_camera) follows `camera`: every volume scrolls back around it (one
-  // submission for all), and the volumes' blend boxes are centred on it from the next update
-  // on. Does nothing to a field that does not track. When tracking_would_scroll(camera), no
-  // frame or update that uses the field may be in flight (see scroll()).
-  Status track(glm::vec3 camera);
+  // A tracking field (track_camera) follows `camera`: every cascade scrolls back around it
+  // (static volumes stay), and the cascades' blend boxes are centred on it from the next update
+  // on. The entering probes start in the next update's passes (update_passes()), in the same
+  // submission: no GPU work and no wait here. Does nothing to a field that does not track.
+  void track(glm::vec3 camera);
   bool tracking_would_scroll(glm::vec3 camera) const;
 
   // Brings probe states up to date with moved geometry (reclassifies probes near moved
@@ -192,15 +194,20 @@ class IrradianceField {
   // The volume that owns `slot`, and the slot's grid point (no relocation offset).
   uint32_t volume_of(uint32_t slot) const;
   glm::vec3 grid_point(uint32_t slot) const;
-  // Moves `volume` by `cells` (its origin and phase) and appends the slots of the probes that
-  // entered to `entering`; a move of the whole grid or more enters them all.
+  // Scrolling (field_scroll.cpp). Moves `volume` by `cells` (its origin and phase) and appends
+  // the slots of the probes that entered to `entering`; a move of the whole grid or more enters
+  // them all.
   void move_volume(uint32_t volume, glm::ivec3 cells, std::vector<uint32_t>& entering);
-  // Clears, relocates and classifies entering probes (the second half of a scroll).
-  Status start_probes(const std::vector<uint32_t>& entering);
+  // The start of the probes in entering_ (maps cleared, no offset, history reset, relocated,
+  // classified, states copied for the CPU), after the constants of their new place; they move
+  // to unread_.
+  void add_start_passes(std::vector<vk::Pass>& passes);
+  vk::Pass clear_maps_pass(const std::vector<uint32_t>& slots) const;
+  // The scheduler takes the unread_ probes' states from scroll_states_: once the submission
+  // that started them completed (collect: checks; adopt: the caller knows).
+  void collect_scroll_verdicts();
+  void adopt_scroll_verdicts();
   bool scrolled() const;
-  // Zero maps (or SH coefficients), zero offset, Vigilant with a history reset, for `slots`;
-  // and the constants (origin, phase) uploaded.
-  Status clear_probes(const std::vector<uint32_t>& slots);
   // One invocation per (probe, item) over `probes` entries of the probe list from `list_start`.
   struct LinearWork {
     uint32_t list_start = 0;
@@ -219,6 +226,9 @@ class IrradianceField {
   // The lighting passes of one update over `rays` (fused or split path).
   void add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
                            DirectMode direct_mode) const;
+  // (Relocation passes x `relocations`, classification) over the probes of `fixed_rays`.
+  void add_management_passes(std::vector<vk::Pass>& passes, const LinearWork& fixed_rays,
+                             uint32_t relocations) const;
   // `texels`: the interior side of the atlas's maps.
   Result<AtlasImage> read_atlas(const vk::Image& image, uint32_t channels, uint32_t texels);
   // The probe states as the GPU keeps them, slot by slot.
@@ -280,7 +290,14 @@ class IrradianceField {
   vk::Image irradiance_;
   vk::Image distance_;
   vk::Buffer sh_;         // ShProbe per probe of an SH field, one otherwise
-  vk::Buffer zero_tile_;  // zeros the size of a map tile: what clear_probes() copies
+  vk::Buffer zero_tile_;  // zeros the size of a map tile: what a scroll copies to clear maps
+  // Scrolls (field_scroll.cpp): probes that entered and are not started yet; probes started
+  // whose states the scheduler has not taken yet, copied to `scroll_states_` (host-visible)
+  // by the submission after serial `unread_serial_` (unknown until the next update is built).
+  std::vector<uint32_t> entering_;
+  std::vector<uint32_t> unread_;
+  std::optional<uint64_t> unread_serial_;
+  vk::Buffer scroll_states_;
 };
 
 }  // namespace ddgi

@@ -28,6 +28,7 @@ struct GridPlacement {
   glm::vec3 origin{0.0f};
   glm::vec3 spacing{1.0f};
   glm::ivec3 counts{1};
+  bool operator==(const GridPlacement&) const = default;
 };
 
 // The start of fitting a grid to bounds. Bounds without extent (empty, or a single point) get

@@ -127,6 +127,9 @@ struct ProbeGridHint {
   glm::vec3 spacing{1.0f};
   glm::ivec3 counts{0};
 };
+// Static volumes a scene may place: an irradiance field holds 8 volumes (kMaxFieldVolumes), one
+// of them its own grid.
+inline constexpr size_t kMaxSceneProbeVolumes = 7;
 
 struct Bounds {
   glm::vec3 min{1e30f};
@@ -150,6 +153,9 @@ struct Scene {
   std::vector<Camera> cameras;  // cameras[0] is the default view when present
   Environment environment;
   std::optional<ProbeGridHint> probe_grid;
+  // Static volumes of the irradiance field beside its grid (sidecar `probe_volumes`; the field's
+  // static_volumes parameter), e.g. a finer grid in one room.
+  std::vector<ProbeGridHint> probe_volumes;
   std::vector<std::string> warnings;  // non-fatal findings, e.g. "no light"
 
   // World-space bounds of every instance's vertices. Exact up to 64 M instanced vertices;

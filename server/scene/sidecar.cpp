@@ -189,8 +189,7 @@ Result<MaterialOverride> read_material(const json& value, const std::string& pat
   return o;
 }
 
-Result<ProbeGridHint> read_probe_grid(const json& value) {
-  const std::string path = "probe_grid";
+Result<ProbeGridHint> read_probe_grid(const json& value, const std::string& path) {
   DDGI_TRY(check_object(value, path, {"origin", "spacing", "counts"}));
   if (!value.contains("origin") || !value.contains("spacing") || !value.contains("counts")) {
     return invalid_argument(path + ": 'origin', 'spacing' and 'counts' are all required");
@@ -213,8 +212,9 @@ Result<ProbeGridHint> read_probe_grid(const json& value) {
 }
 
 Result<Sidecar> parse_document(const json& root, const fs::path& file) {
-  DDGI_TRY(check_object(root, "",
-                        {"scene", "camera", "environment", "lights", "materials", "probe_grid"}));
+  DDGI_TRY(check_object(
+      root, "",
+      {"scene", "camera", "environment", "lights", "materials", "probe_grid", "probe_volumes"}));
   const fs::path folder = file.parent_path();
   Sidecar sidecar;
   sidecar.file = file;
@@ -246,7 +246,21 @@ Result<Sidecar> parse_document(const json& root, const fs::path& file) {
     }
   }
   if (root.contains("probe_grid")) {
-    DDGI_ASSIGN_OR_RETURN(sidecar.probe_grid, read_probe_grid(root["probe_grid"]));
+    DDGI_ASSIGN_OR_RETURN(sidecar.probe_grid, read_probe_grid(root["probe_grid"], "probe_grid"));
+  }
+  if (root.contains("probe_volumes")) {
+    const json& volumes = root["probe_volumes"];
+    const std::string what = "an array of at most " + std::to_string(kMaxSceneProbeVolumes) +
+                             " grids (the field holds one more: its own grid)";
+    if (!volumes.is_array() || volumes.size() > kMaxSceneProbeVolumes) {
+      return expected("probe_volumes", what, volumes);
+    }
+    for (size_t i = 0; i < volumes.size(); ++i) {
+      DDGI_ASSIGN_OR_RETURN(
+          ProbeGridHint volume,
+          read_probe_grid(volumes[i], "probe_volumes[" + std::to_string(i) + "]"));
+      sidecar.probe_volumes.push_back(volume);
+    }
   }
   return sidecar;
 }
@@ -304,6 +318,7 @@ Status apply_sidecar(const Sidecar& sidecar, const SceneLimits& limits, Scene* s
   }
   scene->lights.insert(scene->lights.end(), sidecar.lights.begin(), sidecar.lights.end());
   if (sidecar.probe_grid) scene->probe_grid = sidecar.probe_grid;
+  if (!sidecar.probe_volumes.empty()) scene->probe_volumes = sidecar.probe_volumes;
   return ok_status();
 }
 

@@ -32,6 +32,7 @@ struct Sidecar {
   std::vector<Light> lights;
   MaterialOverrides materials;
   std::optional<ProbeGridHint> probe_grid;
+  std::vector<ProbeGridHint> probe_volumes;
 };
 
 // `file` locates relative paths and prefixes error messages; nothing is read from it.

@@ -465,6 +465,12 @@ void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParam
     v->set_counts_x(volume.counts.x);
     v->set_counts_y(volume.counts.y);
     v->set_counts_z(volume.counts.z);
+    if (volume.static_volume) {
+      v->set_static_volume(*volume.static_volume);
+    } else {
+      v->set_cascade(volume.cascade);
+    }
+    v->set_tracks_camera(volume.tracks(field.params()));
   }
 }
 

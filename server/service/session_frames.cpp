@@ -156,12 +156,9 @@ Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<Frame
     DDGI_TRY(wait_for_frames_on_gpu());
   }
   // A tracking field follows the camera of the frame that carries the update: the first view
-  // drawn in an iteration (docs/cascades.md). Scrolling rewrites probe states and maps, which
-  // frames in flight read.
-  if (batch->field_due && field()) {
-    if (field()->tracking_would_scroll(camera.position)) DDGI_TRY(wait_for_frames_on_gpu());
-    DDGI_TRY(field()->track(camera.position));
-  }
+  // drawn in an iteration (docs/cascades.md). A scroll's work goes into that frame's command
+  // buffer, after the frames in flight on the same queue: nothing to wait for.
+  if (batch->field_due && field()) field()->track(camera.position);
   const bool behind_another = !in_flight_.empty();
   DDGI_ASSIGN_OR_RETURN(frame.pending, state_.scene->submit(settings, target, batch->field_due));
   if (batch->field_due) {

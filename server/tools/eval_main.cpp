@@ -99,7 +99,7 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, scene, config));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
-  DDGI_TRY(gi->track(refs.settings.camera.position));
+  gi->track(refs.settings.camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   FrameSettings settings;
   settings.width = job.width;
@@ -211,7 +211,7 @@ Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Sce
   DDGI_ASSIGN_OR_RETURN(w.gi, make_gi_stack(context, job, fitted, scene, config));
   DDGI_ASSIGN_OR_RETURN(w.renderer, Renderer::create(context, w.gi->scene(), w.gi->field(),
                                                      context.default_backend()));
-  DDGI_TRY(w.gi->track(refs.settings.camera.position));
+  w.gi->track(refs.settings.camera.position);
   DDGI_TRY(w.gi->warm_up(static_cast<uint32_t>(job.warmup)));
   w.settings.width = job.width;
   w.settings.height = job.height;

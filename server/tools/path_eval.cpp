@@ -95,7 +95,7 @@ struct Walker {
 
   Status frame(int64_t step, const Camera& camera, float exposure, const PathView* scored) {
     const bool scrolled = gi.field()->tracking_would_scroll(camera.position);
-    DDGI_TRY(gi.field()->track(camera.position));
+    gi.field()->track(camera.position);
     FrameSettings settings;
     settings.width = job.width;
     settings.height = job.height;
@@ -146,7 +146,7 @@ Result<PathWalk> walk_config(vk::Context& context, const EvalJob& job, const Sce
   DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, scene, config));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
-  DDGI_TRY(gi->track(views.front().camera.position));
+  gi->track(views.front().camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   walk.probes = probe_count(gi->field()->params());
   walk.field_mib = double(field_gpu_bytes(gi->field()->params())) / (1024.0 * 1024.0);

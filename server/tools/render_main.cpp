@@ -237,7 +237,7 @@ Status render_frames(const RenderJob& job, vk::Context& context, const Scene& sc
       auto renderer, Renderer::create(context, gi->scene(), gi->field(), context.default_backend(),
                                       gi->shadow_field()));
   log_stack(job, scene, *gi);
-  DDGI_TRY(gi->track(job.settings.camera.position));
+  gi->track(job.settings.camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   FrameResult frame;
   tools::PassTable table;

@@ -550,6 +550,11 @@ VkResult Context::injected_fault(FaultSite site) const {
   return hook(site);
 }
 
+uint64_t Context::submitted_serial() const {
+  std::lock_guard<std::mutex> lock(serial_mutex_);
+  return submitted_serial_;
+}
+
 uint64_t Context::completed_serial() const {
   std::lock_guard<std::mutex> lock(serial_mutex_);
   return pending_serials_.empty() ? submitted_serial_ : *pending_serials_.begin() - 1;

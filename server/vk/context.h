@@ -121,6 +121,10 @@ class Context {
   // Waits, holding no lock, for `fence`, the fence of submission `serial`; from then on the
   // submission counts as completed (deferred destruction). Every submission must be waited for.
   Status wait(uint64_t serial, VkFence fence);
+  // The newest submission's serial, and whether submission `serial` (and every one before it)
+  // has completed: waited for by whoever made it.
+  uint64_t submitted_serial() const;
+  bool completed(uint64_t serial) const { return completed_serial() >= serial; }
 
   // Device loss. The first VK_ERROR_DEVICE_LOST from a submission or a fence wait marks the
   // device lost for good: every later submit() fails at once with the same UNAVAILABLE error,

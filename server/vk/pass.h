@@ -13,6 +13,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -50,6 +51,14 @@ struct Pass {
     return bytes;
   }
 };
+
+// `pass` with its declared reads and writes.
+inline Pass with_access(Pass pass, std::vector<ResourceRef> reads,
+                        std::vector<ResourceRef> writes) {
+  pass.reads = std::move(reads);
+  pass.writes = std::move(writes);
+  return pass;
+}
 
 // Records `passes` in order: each timed pass between timestamps of its name and group (when
 // `timer` is not null), then a full barrier.

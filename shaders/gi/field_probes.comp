@@ -6,6 +6,8 @@
 //            stay within probe_offset_limit x spacing of the grid point (2021 paper, sec. 5).
 //  classify: inside -> Off; a front face within the cage diagonal -> Vigilant; else Sleeping
 //            (thesis sec. 6.1's relevant samples; the 2021 paper's states, sec. 6).
+//  start:    a probe that entered a scrolled volume starts over: no offset, no history (its
+//            fixed rays are traced after this, for relocation and classification).
 #include "common/field_update.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
@@ -16,6 +18,11 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonl
 void main() {
   uint probe, local;
   if (!field_item(probe, local)) return;
+  if (pc.mode == kProbeModeStart) {
+    probe_states[probe].offset = vec3(0.0);
+    probe_states[probe].flags = kProbeResetHistory;
+    return;
+  }
   const uint n = field.fixed_rays;
   const uint first = probe * rays_per_probe_total();
   uint backfaces = 0u;

@@ -141,12 +141,14 @@ struct FieldConstants {
   uint pad0;
 };
 
-// At most this many volumes per field (cascades).
+// At most this many volumes per field (cascades and static volumes).
 DDGI_CONST uint kMaxFieldVolumes = 8u;
 
-// What the relocate/classify kernel does this dispatch (FieldDispatch::mode).
+// What the probe-management kernel does this dispatch (FieldDispatch::mode).
 DDGI_CONST uint kProbeModeRelocate = 0u;  // move probes out of geometry and off front faces
 DDGI_CONST uint kProbeModeClassify = 1u;  // write each probe's state from its fixed rays
+DDGI_CONST uint kProbeModeStart = 2u;     // a probe that entered a scrolled volume: on its grid
+                                          // point, no history, Vigilant until classified
 
 // Push constants of the linear (one invocation per item) field kernels. The probes a dispatch
 // works on are a window of the probe list: list[(list_start + i) % list_size].

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -111,9 +112,93 @@ TEST(FieldParams, CascadesPastTheProbeLimitAreRefused) {
   IrradianceFieldParams p;
   p.counts = {256, 128, 64};  // 2,097,152 probes: at most 2 cascades fit 4,194,304
   p.cascades = 3;
-  EXPECT_THAT(error_of(p), HasSubstr("cascades=3 of 2097152 probes make 6291456 probes"));
+  EXPECT_THAT(error_of(p),
+              HasSubstr("cascades=3 of 2097152 probes and 0 static volume(s) make 6291456 probes"));
   p.cascades = 1;
   EXPECT_THAT(error_of(p), Not(HasSubstr("cascades")));
+}
+
+// Static volumes add their probes to the limit: the refusal names them.
+TEST(FieldParams, StaticVolumesCountTowardsTheProbeLimit) {
+  IrradianceFieldParams p;
+  p.counts = {256, 128, 64};  // 2,097,152 probes
+  p.cascades = 2;             // the limit exactly (refused by the atlas size only)
+  EXPECT_THAT(error_of(p), Not(HasSubstr("make")));
+  p.static_volumes = {{{0, 0, 0}, {1, 1, 1}, {1, 1, 1}}};
+  EXPECT_THAT(error_of(p), HasSubstr("and 1 static volume(s) make 4194305 probes"));
+}
+
+// Volumes in blend order, finest first by their largest spacing, probes laid out in that order:
+// a static volume finer than the grid comes before it, a coarser one after its cascades, ties go
+// to the cascades.
+TEST(FieldParams, StaticVolumesTakeTheirPlaceAmongTheCascadesByFineness) {
+  IrradianceFieldParams p;
+  p.origin = {0, 0, 0};
+  p.spacing = {1, 1, 1};
+  p.counts = {3, 3, 3};  // 27 probes a cascade: spacings 1 and 2
+  p.cascades = 2;
+  p.static_volumes = {{{5, 5, 5}, {4, 1, 1}, {2, 2, 2}},             // coarsest (largest spacing 4)
+                      {{-1, 0, 0}, {0.5f, 0.25f, 0.5f}, {4, 1, 2}},  // finest
+                      {{9, 9, 9}, {2, 2, 2}, {1, 1, 1}}};            // ties with cascade 1
+  const std::vector<FieldVolume> v = field_volumes(p);
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_EQ(v[0].static_volume, std::optional<uint32_t>(1));
+  EXPECT_EQ(v[0].origin, glm::vec3(-1, 0, 0));
+  EXPECT_EQ(v[0].counts, glm::ivec3(4, 1, 2));
+  EXPECT_FALSE(v[1].static_volume);
+  EXPECT_EQ(v[1].cascade, 0u);
+  EXPECT_EQ(v[1].spacing, glm::vec3(1));
+  EXPECT_FALSE(v[2].static_volume);
+  EXPECT_EQ(v[2].cascade, 1u);
+  EXPECT_EQ(v[2].origin, glm::vec3(-1));  // around the grid's centre (1, 1, 1)
+  EXPECT_EQ(v[3].static_volume, std::optional<uint32_t>(2));
+  EXPECT_EQ(v[4].static_volume, std::optional<uint32_t>(0));
+  const std::vector<uint32_t> first = {0, 8, 35, 62, 63};
+  for (size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i].first_probe, first[i]) << i;
+  EXPECT_EQ(probe_count(p), 71u);
+  // Only the cascades follow the camera.
+  p.track_camera = true;
+  EXPECT_FALSE(v[0].tracks(p));
+  EXPECT_TRUE(v[1].tracks(p));
+  EXPECT_TRUE(v[2].tracks(p));
+  EXPECT_FALSE(v[4].tracks(p));
+}
+
+// The text form: '|' between volumes, origin/spacing/counts each in the grid's own form and
+// range; errors name the volume.
+TEST(FieldParamTable, StaticVolumesAreReadAndRefusedByVolume) {
+  IrradianceFieldParams p;
+  const ParamTable<IrradianceFieldParams>& table = field_param_table();
+  ASSERT_TRUE(table.apply(p, {"static_volumes=1,2,3/0.5,0.5,0.5/2,3,4"}).ok());
+  ASSERT_EQ(p.static_volumes.size(), 1u);
+  EXPECT_EQ(p.static_volumes[0].counts, glm::ivec3(2, 3, 4));
+  EXPECT_THAT(table.apply(p, {"static_volumes=1,2,3/0.5,0.5,0.5"}).error().message,
+              HasSubstr("static_volumes[0] must be origin/spacing/counts (got "
+                        "'1,2,3/0.5,0.5,0.5')"));
+  EXPECT_THAT(
+      table.apply(p, {"static_volumes=0,0,0/1,1,1/1,1,1|0,0,0/1,1,1/2,x,2"}).error().message,
+      HasSubstr("static_volumes[1]: counts"));
+  EXPECT_THAT(
+      table.apply(p, {"static_volumes=0,0,0/1,1,1/1,1,1|0,0,0/1,1,1/0,1,1"}).error().message,
+      HasSubstr("static_volumes[1] counts.x must be in [1, 512] (got 0)"));
+  EXPECT_THAT(table.apply(p, {"cascades=8", "static_volumes=0,0,0/1,1,1/1,1,1"}).error().message,
+              HasSubstr("static_volumes and cascades make more than 8 volumes (1 and 8)"));
+  // Refusals left the volume read first; empty text removes it.
+  EXPECT_EQ(p.static_volumes.size(), 1u);
+  ASSERT_TRUE(table.apply(p, {"static_volumes="}).ok());
+  EXPECT_TRUE(p.static_volumes.empty());
+}
+
+// A scene's probe_volumes (sidecar) are the default field's static volumes.
+TEST(FieldParams, SceneProbeVolumesAreTheDefaultStaticVolumes) {
+  Scene scene;
+  scene.probe_grid = ProbeGridHint{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  scene.probe_volumes = {{{1, 2, 3}, {0.5f, 0.5f, 0.5f}, {4, 5, 6}}};
+  const IrradianceFieldParams p = default_field_params(scene);
+  ASSERT_EQ(p.static_volumes.size(), 1u);
+  EXPECT_EQ(p.static_volumes[0].origin, glm::vec3(1, 2, 3));
+  EXPECT_EQ(p.static_volumes[0].counts, glm::ivec3(4, 5, 6));
+  EXPECT_EQ(error_of(p), "");
 }
 
 TEST(FieldParams, FittedGridIsCellCentredInsideTheBounds) {
@@ -148,6 +233,7 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"track_camera", "true"},
       {"cascades", "3"},
       {"cascade_spacing_ratio", "2.5"},
+      {"static_volumes", "-1,0,2.5/0.25,0.25,0.5/4,2,3|0,0,0/4,4,4/2,2,2"},
       {"rays_per_probe", "64"},
       {"fixed_rays", "16"},
       {"max_ray_distance", "100"},
@@ -183,6 +269,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.track_camera = true;
   expected.cascades = 3;
   expected.cascade_spacing_ratio = 2.5f;
+  expected.static_volumes = {{{-1, 0, 2.5f}, {0.25f, 0.25f, 0.5f}, {4, 2, 3}},
+                             {{0, 0, 0}, {4, 4, 4}, {2, 2, 2}}};
   expected.rays_per_probe = 64;
   expected.fixed_rays = 16;
   expected.max_ray_distance = 100.0f;

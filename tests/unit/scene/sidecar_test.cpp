@@ -79,7 +79,10 @@ TEST(Sidecar, EverythingItCanSay) {
           {"transmission", 0.5},
           {"double_sided", true}}}}},
       {"probe_grid",
-       {{"origin", {-1, 0, -1}}, {"spacing", {0.5, 0.5, 0.5}}, {"counts", {5, 6, 7}}}}});
+       {{"origin", {-1, 0, -1}}, {"spacing", {0.5, 0.5, 0.5}}, {"counts", {5, 6, 7}}}},
+      {"probe_volumes",
+       {{{"origin", {-0.5, 0.25, -0.5}}, {"spacing", {0.25, 0.25, 0.5}}, {"counts", {3, 4, 2}}},
+        {{"origin", {-4, 0, -4}}, {"spacing", {2, 2, 2}}, {"counts", {5, 3, 5}}}}}});
   Result<Scene> scene = s.load();
   ASSERT_TRUE(scene.ok()) << error_of(scene);
 
@@ -118,6 +121,12 @@ TEST(Sidecar, EverythingItCanSay) {
   EXPECT_EQ(scene->probe_grid->origin, glm::vec3(-1, 0, -1));
   EXPECT_EQ(scene->probe_grid->spacing, glm::vec3(0.5f));
   EXPECT_EQ(scene->probe_grid->counts, glm::ivec3(5, 6, 7));
+  ASSERT_EQ(scene->probe_volumes.size(), 2u);
+  EXPECT_EQ(scene->probe_volumes[0].origin, glm::vec3(-0.5f, 0.25f, -0.5f));
+  EXPECT_EQ(scene->probe_volumes[0].spacing, glm::vec3(0.25f, 0.25f, 0.5f));
+  EXPECT_EQ(scene->probe_volumes[0].counts, glm::ivec3(3, 4, 2));
+  EXPECT_EQ(scene->probe_volumes[1].origin, glm::vec3(-4.0f, 0.0f, -4.0f));
+  EXPECT_EQ(scene->probe_volumes[1].counts, glm::ivec3(5, 3, 5));
 }
 
 TEST(Sidecar, EmissiveStrengthAloneScalesTheGltfFactor) {
@@ -287,6 +296,18 @@ INSTANTIATE_TEST_SUITE_P(
                    "lights[0].direction: expected a non-zero direction of finite length"},
         BadSidecar{{{"probe_grid", {{"origin", {0, 0, 0}}}}},
                    "probe_grid: 'origin', 'spacing' and 'counts' are all required"},
+        BadSidecar{{{"probe_volumes",
+                     {{{"origin", {0, 0, 0}}, {"spacing", {1, 1, 1}}, {"counts", {2, 2, 2}}},
+                      {{"origin", {0, 0, 0}}, {"spacing", {1, -1, 1}}, {"counts", {2, 2, 2}}}}}},
+                   "probe_volumes[1].spacing: expected an array of 3 numbers, each a finite "
+                   "number > 0"},
+        BadSidecar{{{"probe_volumes", {{"origin", {0, 0, 0}}}}},
+                   "probe_volumes: expected an array of at most 7 grids"},
+        BadSidecar{{{"probe_volumes", json::array({json{{"origin", {0, 0, 0}}, {"size", 1}}})}},
+                   "probe_volumes[0].size: unknown key"},
+        BadSidecar{{{"probe_volumes", json::array({1, 2, 3, 4, 5, 6, 7, 8})}},
+                   "probe_volumes: expected an array of at most 7 grids (the field holds one more: "
+                   "its own grid), got"},
         BadSidecar{json::array(), "(top level): expected an object"}));
 
 TEST(Sidecar, LightLimitCountsGltfAndSidecarLights) {
