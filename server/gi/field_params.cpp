@@ -50,7 +50,10 @@ ParamSpec<IrradianceFieldParams> static_volumes_param() {
     std::string text;
     for (const GridPlacement& volume : p.static_volumes) {
       if (!text.empty()) text += "|";
-      for (size_t k = 0; k < grid.size(); ++k) text += (k ? "/" : "") + grid[k].format(volume);
+      for (size_t k = 0; k < grid.size(); ++k) {
+        if (k > 0) text += '/';
+        text += grid[k].format(volume);
+      }
     }
     return text;
   };
@@ -306,6 +309,12 @@ IrradianceFieldParams default_field_params(const Scene& scene) {
   return params;
 }
 
+uint64_t largest_map_tile_bytes(const IrradianceFieldParams& p) {
+  const uint64_t irradiance_side = p.irradiance_texels + 2 * gpu::kAtlasBorder;
+  const uint64_t distance_side = p.distance_texels + 2 * gpu::kAtlasBorder;
+  return std::max(irradiance_side * irradiance_side * 16, distance_side * distance_side * 8);
+}
+
 uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
   const uint64_t probes = probe_count(p);
   const uint64_t irradiance_tile = uint64_t(p.irradiance_texels + 2) * (p.irradiance_texels + 2);
@@ -316,8 +325,10 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
   // One tile of each map for SH fields, one ShProbe for octahedral ones (atlas_layout()).
   const uint64_t maps =
       sh ? probes * sizeof(gpu::ShProbe) + probe_maps : probes * probe_maps + sizeof(gpu::ShProbe);
-  return maps + probes * (sizeof(gpu::ProbeState) + sizeof(uint32_t)) +
-         rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
+  // Per probe: its state and the state's host-visible copy for scrolls, and two probe-list
+  // entries (the active list, the probes a scroll starts); one zero tile to clear maps from.
+  return maps + probes * (2 * sizeof(gpu::ProbeState) + 2 * sizeof(uint32_t)) +
+         largest_map_tile_bytes(p) + rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
 }
 
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& p) {

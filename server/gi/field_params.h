@@ -255,6 +255,8 @@ AtlasLayout atlas_layout(const IrradianceFieldParams& params);
 // 1; bands 1 and 2 are FieldConstants::sh_band1/2, shaders/common/sh.glsl), as the dumps and
 // the probe stream give them to clients.
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& params);
+// Bytes of one probe's larger map tile, borders included (RGBA32F irradiance, RG32F distance).
+uint64_t largest_map_tile_bytes(const IrradianceFieldParams& params);
 // Bytes of GPU memory the field's atlases and ray buffers need (checked against the budget
 // before anything is allocated).
 uint64_t field_gpu_bytes(const IrradianceFieldParams& params);

@@ -104,29 +104,8 @@ void IrradianceField::add_start_passes(std::vector<vk::Pass>& passes) {
   passes.push_back(
       with_access(linear_pass("probe start", manage_, start), {&probe_list_}, {&probes_}));
   add_management_passes(passes, {at, at + n, n, params_.fixed_rays}, params_.relocation_iterations);
-  if (params_.classification) {
-    // The verdicts, for the CPU's scheduler once this submission has completed.
-    vk::Pass verdicts;
-    verdicts.name = "scroll: probe states";
-    verdicts.group = vk::PassGroup::kIrradianceField;
-    verdicts.timed = false;
-    verdicts.reads = {&probes_};
-    verdicts.commands = [from = probes_.handle(), to = scroll_states_.handle(),
-                         slots](VkCommandBuffer cmd) {
-      std::vector<VkBufferCopy> regions;
-      for (uint32_t p : slots) {
-        const VkDeviceSize offset = VkDeviceSize(p) * sizeof(gpu::ProbeState);
-        regions.push_back({offset, offset, sizeof(gpu::ProbeState)});
-      }
-      vkCmdCopyBuffer(cmd, from, to, uint32_t(regions.size()), regions.data());
-      VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-      to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
-                           &to_host, 0, nullptr, 0, nullptr);
-    };
-    passes.push_back(verdicts);
-  }
+  // The verdicts, for the CPU's scheduler once this submission has completed.
+  if (params_.classification) passes.push_back(copy_states_pass(slots));
   unread_.insert(unread_.end(), slots.begin(), slots.end());
   unread_serial_.reset();  // the submission that carries these passes is not made yet
 }
@@ -167,6 +146,29 @@ vk::Pass IrradianceField::clear_maps_pass(const std::vector<uint32_t>& slots) co
                            uint32_t(irradiance_regions.size()), irradiance_regions.data());
     vkCmdCopyBufferToImage(cmd, zero, distance, VK_IMAGE_LAYOUT_GENERAL,
                            uint32_t(distance_regions.size()), distance_regions.data());
+  };
+  return pass;
+}
+
+vk::Pass IrradianceField::copy_states_pass(const std::vector<uint32_t>& slots) const {
+  vk::Pass pass;
+  pass.name = "scroll: probe states";
+  pass.group = vk::PassGroup::kIrradianceField;
+  pass.timed = false;
+  pass.reads = {&probes_};
+  pass.commands = [from = probes_.handle(), to = scroll_states_.handle(),
+                   slots](VkCommandBuffer cmd) {
+    std::vector<VkBufferCopy> regions;
+    for (uint32_t p : slots) {
+      const VkDeviceSize offset = VkDeviceSize(p) * sizeof(gpu::ProbeState);
+      regions.push_back({offset, offset, sizeof(gpu::ProbeState)});
+    }
+    vkCmdCopyBuffer(cmd, from, to, uint32_t(regions.size()), regions.data());
+    VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                         &to_host, 0, nullptr, 0, nullptr);
   };
   return pass;
 }

@@ -203,14 +203,9 @@ Status IrradianceField::create_resources() {
                         vk::Buffer::create(context_, probes * sizeof(gpu::ProbeState),
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                            vk::MemoryUsage::kReadback, "scrolled probe states"));
-  const VkDeviceSize tile_bytes =
-      std::max(uint64_t(params_.irradiance_texels + 2 * gpu::kAtlasBorder) *
-                   (params_.irradiance_texels + 2 * gpu::kAtlasBorder) * 16u,
-               uint64_t(params_.distance_texels + 2 * gpu::kAtlasBorder) *
-                   (params_.distance_texels + 2 * gpu::kAtlasBorder) * 8u);
   DDGI_ASSIGN_OR_RETURN(
       zero_tile_,
-      vk::Buffer::create(context_, tile_bytes,
+      vk::Buffer::create(context_, largest_map_tile_bytes(params_),
                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          vk::MemoryUsage::kDeviceLocal, "zero map tile"));
   const VkImageUsageFlags image_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |

@@ -203,6 +203,7 @@ class IrradianceField {
   // to unread_.
   void add_start_passes(std::vector<vk::Pass>& passes);
   vk::Pass clear_maps_pass(const std::vector<uint32_t>& slots) const;
+  vk::Pass copy_states_pass(const std::vector<uint32_t>& slots) const;  // to scroll_states_
   // The scheduler takes the unread_ probes' states from scroll_states_: once the submission
   // that started them completed (collect: checks; adopt: the caller knows).
   void collect_scroll_verdicts();
