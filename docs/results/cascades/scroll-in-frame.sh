@@ -14,6 +14,7 @@ mkdir -p "$out"
 ddgi-bench scenes/cornell_box.gltf scenes/street.ddgi.json --grids 32x16x32 --rays 128 \
   --frames 60 --warmup 32 --scroll-every 4 --backend pipeline 2>&1 | tee "$out/scroll-bench.txt"
 for speed in 1 4; do
+  mkdir -p "$out/stream-$speed"
   bash docs/results/cascades/path.sh stream "$out/stream-$speed" "$speed" 60 \
     2>&1 | tail -n 40 >"$out/stream-$speed.txt"
 done
