@@ -1,25 +1,39 @@
 #!/usr/bin/env bash
-# Cascades shaped to the street: the camera walks along x, so cascades of 64x16x16 probes (the
-# same 16,384 per cascade as 32x16x32) reach further along the street at the same spacing. Runs
-# on the H200 through deploy/gpu-run.sh with the bundle (.devcarry, .gl) carried:
-#   shape.sh OUT   ddgi-eval --path along scenes/street.path.json (flags as path.sh eval):
-#                  32x16x32 ratio 4 (baseline), 64x16x16 ratio 4 and 3, one grid 192x8x32
-# Writes OUT/shape-h200.txt (stdout) and OUT/street.path.{csv,svg}; the EXR frames that
-# --out-dir also writes stay in a scratch folder and are deleted.
+# Cascade shapes of the same probe count as one grid fitted to the street (49,152), along the
+# street's camera path: the camera walks along x, so cascades of 64x16x16 probes (the same
+# 16,384 per cascade as 32x16x32) reach further along the street at the same spacing. Runs on the
+# H200 through deploy/gpu-run.sh with the bundle (.devcarry, .gl) carried:
+#   shape.sh 1 OUT   32x16x32 ratio 4 (path.sh's), 64x16x16 ratio 4 and 3, one grid 192x8x32
+#   shape.sh 2 OUT   one grid 192x8x32 (control), 64x16x16 ratio 2.5, 64x16x16 ratio 3 at
+#                    spacing 0.4, 4 cascades of 64x12x16 ratio 2.5, 64x16x16 ratio 3.5
+# ddgi-eval --path with path.sh eval's flags, all configurations in one call. Writes
+# OUT/shape[2]-h200.txt (stdout) and OUT/street.path.{csv,svg}; the EXR frames that --out-dir
+# also writes stay in a scratch folder and are deleted.
 set -euo pipefail
-out=${1:?OUT}
+round=${1:?ROUND (1 or 2)}
+out=${2:?OUT}
 mkdir -p "$out"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-tracking="spacing=0.5,0.5,0.5,cascades=3,track_camera=true"
-cubic4="counts=32,16,32,$tracking,cascade_spacing_ratio=4"
-long4="counts=64,16,16,$tracking,cascade_spacing_ratio=4"
-long3="counts=64,16,16,$tracking,cascade_spacing_ratio=3"
-one_grid="counts=192,8,32,spacing=2.0833,2.5,1.25,origin=-198.958,1.25,-19.375"
+cascades() {  # COUNTS RATIO [SPACING [CASCADES]]
+  local s=${3:-0.5}
+  echo "counts=$1,spacing=$s,$s,$s,cascades=${4:-3},track_camera=true,cascade_spacing_ratio=$2"
+}
+one_grid="one grid 192x8x32:counts=192,8,32,spacing=2.0833,2.5,1.25,origin=-198.958,1.25,-19.375"
+case "$round" in
+  1)
+    name=shape-h200.txt
+    configs="cascades 32x16x32 ratio 4:$(cascades 32,16,32 4);cascades 64x16x16 ratio 4:$(cascades 64,16,16 4);cascades 64x16x16 ratio 3:$(cascades 64,16,16 3);$one_grid"
+    ;;
+  2)
+    name=shape2-h200.txt
+    configs="$one_grid;cascades 64x16x16 ratio 2.5:$(cascades 64,16,16 2.5);cascades 64x16x16 ratio 3 spacing 0.4:$(cascades 64,16,16 3 0.4);4 cascades 64x12x16 ratio 2.5:$(cascades 64,12,16 2.5 0.5 4);cascades 64x16x16 ratio 3.5:$(cascades 64,16,16 3.5)"
+    ;;
+  *) echo "usage: shape.sh 1|2 OUT" >&2; exit 2 ;;
+esac
 start=$(date +%s)
 ddgi-eval scenes/street.ddgi.json --path scenes/street.path.json --width 480 --height 270 \
-  --spp 1024 --warmup 256 --backend pipeline \
-  --configs "cascades 32x16x32 ratio 4:${cubic4};cascades 64x16x16 ratio 4:$long4;cascades 64x16x16 ratio 3:$long3;one grid 192x8x32:$one_grid" \
-  --out-dir "$scratch" 2>&1 | tee "$out/shape-h200.txt"
-echo "wall: $(( $(date +%s) - start )) s" | tee -a "$out/shape-h200.txt"
+  --spp 1024 --warmup 256 --backend pipeline --configs "$configs" \
+  --out-dir "$scratch" 2>&1 | tee "$out/$name"
+echo "wall: $(( $(date +%s) - start )) s" | tee -a "$out/$name"
 cp "$scratch"/*.csv "$scratch"/*.svg "$out"/ 2>/dev/null || true
