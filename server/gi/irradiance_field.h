@@ -102,12 +102,14 @@ class IrradianceField {
   // max_rays_per_update caps it), lit in probe_mode(frame_mode). Building the list advances the
   // field (probe window, update index): record every list built, once, in order.
   std::vector<vk::Pass> update_passes(DirectMode frame_mode);
-  // Whether the next prepare() + update_passes() write the host-visible probe list (moved
-  // geometry, or probe states changed since the last update). An earlier update of this field
-  // still in flight reads that list: a caller that pipelines frames finishes it first.
+  // Whether the next prepare() + update_passes() may write the host-visible probe list (moved
+  // geometry, probe states changed since the last update, or a scroll's states not taken yet:
+  // prepare() takes them once their submission completed, which can come true between this
+  // call and that one). An earlier update of this field still in flight reads that list: a
+  // caller that pipelines frames finishes it first.
   bool next_update_rewrites_probe_list() const {
     return scene_.move_count() != seen_moves_ || scheduler_.active_changed() ||
-           !probe_list_is_active_;
+           !probe_list_is_active_ || !unread_.empty();
   }
   // Chooses the passes of later updates (the split path allocates its surfel buffer here).
   Status set_update_path(FieldUpdatePath path);

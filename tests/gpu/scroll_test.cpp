@@ -344,6 +344,44 @@ TEST_F(ScrollTest, ScrollInsideTheUpdateEqualsAScrollStartedAtOnce) {
   }
 }
 
+// The entering probes' states reach the scheduler while the next update is built, and may
+// change the host-visible probe list that an update still in flight reads: until they are
+// taken, the field says its next update may rewrite the list (so the session finishes its
+// frames in flight first), and once taken, no more. Planted fault (pending states left out of
+// the answer): false after the scroll, fails.
+TEST_F(ScrollTest, PendingScrollStatesMakeTheNextUpdateRewriteTheProbeList) {
+  IrradianceFieldParams p;
+  p.origin = {-0.875f, 0.25f, -0.75f};
+  p.spacing = {0.25f, 0.5f, 0.5f};
+  p.counts = {4, 4, 4};
+  p.rays_per_probe = 32;
+  p.fixed_rays = 16;
+  p.track_camera = true;
+  FieldSetup s = make_field_setup(make_cornell_box(), p);
+  ASSERT_TRUE(s.field);
+  auto renderer = Renderer::create(gpu_context(), *s.scene, s.field, vk::TraceBackend::kRayQuery);
+  ASSERT_TRUE(renderer.ok());
+  FrameSettings settings;
+  settings.width = 16;
+  settings.height = 16;
+  settings.camera.position = {-0.5f, 1.0f, 0.0f};  // the grid's centre
+  settings.camera.forward = {0.0f, 0.0f, -1.0f};
+  auto frame = [&] {
+    s.field->track(settings.camera.position);
+    const auto image = render_updated(**renderer, settings, s.field);
+    EXPECT_TRUE(image.ok()) << (image.ok() ? "" : image.error().message);
+  };
+  frame();
+  frame();
+  EXPECT_FALSE(s.field->next_update_rewrites_probe_list()) << "a steady field";
+  settings.camera.position.x = 0.0f;  // two cells along +x: the frame's update starts a scroll
+  frame();
+  EXPECT_TRUE(s.field->next_update_rewrites_probe_list()) << "the scroll's states are pending";
+  frame();  // takes them (its submission completed), rewrites the list once
+  frame();
+  EXPECT_FALSE(s.field->next_update_rewrites_probe_list()) << "the states were taken";
+}
+
 // No pops: along the camera path, the frame-to-frame change of the indirect view at the frames
 // where the tracking field scrolls is no larger than between ordinary frames (each the same
 // 2.5 cm camera step). The control re-places the grid instead (what a field without scrolling
