@@ -53,6 +53,18 @@ std::vector<IrradianceQuery> box_points(float lo, float hi) {
   return points;
 }
 
+// A 4x4x4 grid over the left half of the Cornell box (x = -0.875 .. -0.125, centre (-0.5, 1,
+// 0)), `rays` blended and `fixed` fixed rays per probe.
+IrradianceFieldParams left_half_of_box(uint32_t rays, uint32_t fixed) {
+  IrradianceFieldParams p;
+  p.origin = {-0.875f, 0.25f, -0.75f};
+  p.spacing = {0.25f, 0.5f, 0.5f};
+  p.counts = {4, 4, 4};
+  p.rays_per_probe = rays;
+  p.fixed_rays = fixed;
+  return p;
+}
+
 // A field over the left half of the Cornell box, scrolled two cells along +x (planes at x =
 // -0.875 .. -0.125 -> -0.375 .. 0.375): the two planes that stay keep their slots, maps, offsets
 // and states bit for bit, and the field still answers the same irradiance where they are (the
@@ -62,12 +74,7 @@ std::vector<IrradianceQuery> box_points(float lo, float hi) {
 // relocated; after one update the entering planes give 1.15x a field fitted there (one update
 // against twelve). Planted fault: the phase not advanced: kept points change by up to 90%.
 TEST_F(ScrollTest, KeptProbesKeepTheirHistoryBitForBitAndEnteringPlanesStartOver) {
-  IrradianceFieldParams p;
-  p.origin = {-0.875f, 0.25f, -0.75f};
-  p.spacing = {0.25f, 0.5f, 0.5f};
-  p.counts = {4, 4, 4};
-  p.rays_per_probe = 64;
-  p.fixed_rays = 32;
+  const IrradianceFieldParams p = left_half_of_box(64, 32);
   FieldSetup s = make_field_setup(make_cornell_box(), p);
   ASSERT_TRUE(s.field);
   IrradianceField& field = *s.field;
@@ -256,12 +263,7 @@ struct ScrolledPair {
 };
 
 ScrolledPair scroll_both_ways(bool classification) {
-  IrradianceFieldParams p;
-  p.origin = {-0.875f, 0.25f, -0.75f};
-  p.spacing = {0.25f, 0.5f, 0.5f};
-  p.counts = {4, 4, 4};
-  p.rays_per_probe = 32;
-  p.fixed_rays = 16;
+  IrradianceFieldParams p = left_half_of_box(32, 16);
   p.track_camera = true;
   p.classification = classification;
   ScrolledPair r;
@@ -350,12 +352,7 @@ TEST_F(ScrollTest, ScrollInsideTheUpdateEqualsAScrollStartedAtOnce) {
 // frames in flight first), and once taken, no more. Planted fault (pending states left out of
 // the answer): false after the scroll, fails.
 TEST_F(ScrollTest, PendingScrollStatesMakeTheNextUpdateRewriteTheProbeList) {
-  IrradianceFieldParams p;
-  p.origin = {-0.875f, 0.25f, -0.75f};
-  p.spacing = {0.25f, 0.5f, 0.5f};
-  p.counts = {4, 4, 4};
-  p.rays_per_probe = 32;
-  p.fixed_rays = 16;
+  IrradianceFieldParams p = left_half_of_box(32, 16);
   p.track_camera = true;
   FieldSetup s = make_field_setup(make_cornell_box(), p);
   ASSERT_TRUE(s.field);
