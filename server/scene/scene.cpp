@@ -82,7 +82,10 @@ bool Scene::has_any_light() const {
   const bool environment_lit = environment.intensity > 0.0f &&
                                (environment.image.has_value() ||
                                 glm::any(glm::greaterThan(environment.color, glm::vec3(0.0f))));
-  if (environment_lit) return true;
+  return environment_lit || has_emissive_surfaces();
+}
+
+bool Scene::has_emissive_surfaces() const {
   // Only emissive materials that some placed primitive uses give light.
   for (const Instance& instance : instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;

@@ -164,6 +164,9 @@ struct Scene {
   Bounds world_bounds() const;
   // True when something emits light: a light, an emissive material in use, or the environment.
   bool has_any_light() const;
+  // True when an emissive material is in use by a placed primitive (area light the probes and
+  // the emitter sampling see).
+  bool has_emissive_surfaces() const;
 };
 
 }  // namespace ddgi

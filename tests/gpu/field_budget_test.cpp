@@ -1,0 +1,160 @@
+// The time budget (tools/field_budget.h): candidates from scene analysis, a calibration that
+// scores every candidate against the path tracer (costs injected: lavapipe's times mean nothing),
+// the choice of the lowest error that fits, the refusal of a budget nothing fits, and the cache.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "gi/field_params.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/gpu/procedural.h"
+#include "tools/field_budget.h"
+
+namespace ddgi::test {
+namespace {
+
+using tools::BudgetCandidate;
+using tools::Calibration;
+
+// The Cornell box with a small emissive panel under its ceiling beside the point light.
+Scene emitter_lit_box() {
+  Scene scene = make_cornell_box();
+  const int panel = add_material(scene, glm::vec3(0.0f), glm::vec3(8.0f), "panel");
+  add_quad(scene, {-0.8f, 1.95f, -0.8f}, {-0.5f, 1.95f, -0.8f}, {-0.5f, 1.95f, -0.5f},
+           {-0.8f, 1.95f, -0.5f}, panel);  // counter-clockwise seen from below: facing down
+  return scene;
+}
+
+GiStackOptions small_field(vk::Context& context) {
+  GiStackOptions options;
+  options.backend = context.default_backend();
+  options.field.origin = {-0.9f, 0.1f, -0.9f};
+  options.field.spacing = {0.6f, 0.6f, 0.6f};
+  options.field.counts = {4, 4, 4};
+  return options;
+}
+
+tools::CalibrationOptions tiny_calibration(size_t candidates) {
+  tools::CalibrationOptions options;
+  options.width = options.height = 32;
+  options.reference_spp = 64;
+  options.warmup_updates = 12;
+  // Costs unrelated to quality (a permutation of 1..n ms), so that the choice must weigh both.
+  for (size_t i = 0; i < candidates; ++i) options.injected_ms.push_back(1.0 + (i * 7) % candidates);
+  return options;
+}
+
+// The index a correct choice gives: the lowest FLIP among the candidates within the budget.
+std::optional<size_t> best_within(const Calibration& c, double budget_ms) {
+  std::optional<size_t> best;
+  for (size_t i = 0; i < c.candidates.size(); ++i) {
+    if (c.candidates[i].cost_ms() > budget_ms) continue;
+    if (!best || c.candidates[i].flip < c.candidates[*best].flip) best = i;
+  }
+  return best;
+}
+
+class FieldBudgetTest : public GpuTest {};
+
+TEST_F(FieldBudgetTest, CandidatesVaryOnlyWhatTheSceneHas) {
+  const GiStackOptions base = small_field(context());
+  const std::vector<BudgetCandidate> lit = tools::budget_candidates(emitter_lit_box(), base.field);
+  const std::vector<BudgetCandidate> plain =
+      tools::budget_candidates(make_cornell_box(), base.field);
+  // Rays 32..256 x {grid, coarse} x {no emitter sampling, emitters 2}; no emitters: half.
+  EXPECT_EQ(lit.size(), 16u);
+  EXPECT_EQ(plain.size(), 8u);
+  for (const BudgetCandidate& c : plain) {
+    EXPECT_EQ(c.name.find("emitters"), std::string::npos) << c.name;
+  }
+  // The coarse grid keeps the extent: 4 probes 0.6 apart -> 2 probes 1.8 apart.
+  EXPECT_EQ(lit[1].name, "rays 32, emitters 2");
+  EXPECT_EQ(lit[2].name, "rays 32, coarse");
+  IrradianceFieldParams coarse = base.field;
+  ASSERT_TRUE(field_param_table().apply(coarse, lit[2].assignments).ok());
+  EXPECT_EQ(coarse.counts, glm::ivec3(2, 2, 2));
+  EXPECT_NEAR(coarse.spacing.x, 1.8f, 1e-5f);
+  // A field of cascades keeps its grid (halving one cascade's probes is not a cheaper field of
+  // the same reach).
+  IrradianceFieldParams cascades = base.field;
+  cascades.cascades = 2;
+  EXPECT_EQ(tools::budget_candidates(make_cornell_box(), cascades).size(), 4u);
+}
+
+TEST_F(FieldBudgetTest, PicksTheLowestErrorThatFitsAndRefusesAnImpossibleBudget) {
+  const Scene scene = emitter_lit_box();
+  const GiStackOptions base = small_field(context());
+  const std::vector<BudgetCandidate> candidates = tools::budget_candidates(scene, base.field);
+  const tools::CalibrationOptions options = tiny_calibration(candidates.size());
+  auto calibrated = tools::calibrate(context(), scene, scene.cameras[0], base, candidates, options);
+  ASSERT_TRUE(calibrated.ok()) << calibrated.error().message;
+  const Calibration& c = *calibrated;
+  ASSERT_EQ(c.candidates.size(), candidates.size());
+  // The errors are measured, not trivial: in (0, 1) and not all alike.
+  double low = 1.0, high = 0.0;
+  for (const auto& point : c.candidates) {
+    EXPECT_GT(point.flip, 0.0) << point.candidate.name;
+    EXPECT_LT(point.flip, 0.5) << point.candidate.name;
+    low = std::min(low, point.flip);
+    high = std::max(high, point.flip);
+  }
+  EXPECT_GT(high - low, 1e-3) << "FLIP " << low << " .. " << high;
+  // Every budget from the cheapest candidate's cost up: the lowest error within it.
+  for (double budget = 1.0; budget <= double(candidates.size()); budget += 1.0) {
+    auto chosen = tools::choose_within_budget(c, budget);
+    ASSERT_TRUE(chosen.ok()) << chosen.error().message;
+    EXPECT_EQ(*chosen, best_within(c, budget).value()) << "budget " << budget;
+    EXPECT_LE(c.candidates[*chosen].cost_ms(), budget);
+  }
+  // Nothing fits: refused, naming the cheapest candidate (injected 1 ms: candidate 0).
+  auto impossible = tools::choose_within_budget(c, 0.5);
+  ASSERT_FALSE(impossible.ok());
+  EXPECT_EQ(impossible.error().code, ErrorCode::kFailedPrecondition);
+  EXPECT_NE(impossible.error().message.find("budget_ms 0.5 cannot be met"), std::string::npos)
+      << impossible.error().message;
+  EXPECT_NE(impossible.error().message.find("'rays 32', costs 1.000 ms"), std::string::npos)
+      << impossible.error().message;
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), 2e6}) {
+    auto refused = tools::choose_within_budget(c, bad);
+    ASSERT_FALSE(refused.ok()) << bad;
+    EXPECT_NE(refused.error().message.find("budget_ms must be in (0, 1e+06]"), std::string::npos)
+        << refused.error().message;
+  }
+}
+
+// apply_budget: the chosen assignments land in the options; a second load of the same scene is
+// served from the cache (same choice, no measuring); an impossible budget changes nothing.
+TEST_F(FieldBudgetTest, ApplyBudgetSetsTheChoiceAndCachesTheCalibration) {
+  const Scene scene = make_cornell_box();
+  const GiStackOptions base = small_field(context());
+  const size_t count = tools::budget_candidates(scene, base.field).size();
+  const tools::CalibrationOptions options = tiny_calibration(count);
+  tools::BudgetCache cache;
+  GiStackOptions first = base;
+  auto chosen = tools::apply_budget(context(), scene, scene.cameras[0], first, 4.0, options, cache);
+  ASSERT_TRUE(chosen.ok()) << chosen.error().message;
+  EXPECT_FALSE(chosen->from_cache);
+  EXPECT_EQ(chosen->candidates, count);
+  EXPECT_LE(chosen->chosen.cost_ms(), 4.0);
+  IrradianceFieldParams expected = base.field;
+  ASSERT_TRUE(field_param_table().apply(expected, chosen->chosen.candidate.assignments).ok());
+  EXPECT_EQ(first.field.rays_per_probe, expected.rays_per_probe);
+  EXPECT_EQ(first.field.counts, expected.counts);
+
+  GiStackOptions second = base;
+  auto again = tools::apply_budget(context(), scene, scene.cameras[0], second, 4.0, options, cache);
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_TRUE(again->from_cache);
+  EXPECT_EQ(again->chosen.candidate.name, chosen->chosen.candidate.name);
+  EXPECT_EQ(again->chosen.flip, chosen->chosen.flip);
+
+  GiStackOptions third = base;
+  auto refused =
+      tools::apply_budget(context(), scene, scene.cameras[0], third, 0.5, options, cache);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(third.field.rays_per_probe, base.field.rays_per_probe);
+}
+
+}  // namespace
+}  // namespace ddgi::test
