@@ -474,6 +474,11 @@ void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParam
   }
 }
 
+void to_proto(const SessionScene& scene, uint64_t command_seq, v1::FieldParams* out) {
+  to_proto(*scene.field(), command_seq, out);
+  if (scene.budget()) to_proto(*scene.budget(), out->mutable_budget());
+}
+
 void to_proto(const ShadowField& field, uint64_t command_seq, v1::FieldParams* out) {
   out->Clear();
   out->set_field(v1::FIELD_KIND_SHADOW);
@@ -507,7 +512,7 @@ void to_proto(const SessionState& session, uint64_t frames, uint64_t command_seq
   }
   for (const LightSlot& slot : scene->lights().slots()) to_proto(slot, out->add_lights());
   for (const auto& [view_id, view] : session.views.all()) to_proto(view, out->add_views());
-  if (scene->field()) to_proto(*scene->field(), command_seq, out->mutable_field());
+  if (scene->field()) to_proto(*scene, command_seq, out->mutable_field());
 }
 
 void to_proto(const SessionState& session, uint64_t frames, v1::SessionSummary* out) {

@@ -57,6 +57,8 @@ void to_proto(const GpuScene& scene, uint32_t index, uint64_t command_seq, v1::I
 // Every parameter in effect (by the parameter tables), probes, bytes, updates; the irradiance
 // field's probe-state counts.
 void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParams* out);
+// The scene's irradiance field, with the time budget's choice it follows (if any).
+void to_proto(const SessionScene& scene, uint64_t command_seq, v1::FieldParams* out);
 void to_proto(const ShadowField& field, uint64_t command_seq, v1::FieldParams* out);
 // `frames`: the loop's frame count; `command_seq`: the command being answered.
 void to_proto(const SessionState& session, uint64_t frames, uint64_t command_seq,

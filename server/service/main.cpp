@@ -50,6 +50,10 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --encode-threads N        JPEG encoder threads, 1..64; also the most  [2]
                             strips one frame is compressed in at once
   --shutdown-grace S        seconds for streams and sessions to end  [5]
+  --budget-ms MS            time budget of sessions that set no budget_ms: GPU ms per frame
+                            within which each picks its field configuration of lowest
+                            measured error (calibrated per scene on load); 0: none  [0]
+  --budget-frame WxH        the frame a time budget pays for          [1920x1080]
   --device NAME             Vulkan device whose name contains NAME
   --backend B               auto | query | pipeline                  [auto]
   --validation              Vulkan validation layers (any message is logged)
@@ -117,6 +121,8 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "web-max-connections",
                        "encode-threads",
                        "shutdown-grace",
+                       "budget-ms",
+                       "budget-frame",
                        "device",
                        "backend",
                        "log-level"},
@@ -192,6 +198,18 @@ Result<ServerOptions> server_options(const Flags& flags) {
   options.encode_threads = static_cast<unsigned>(encode_threads);
   DDGI_ASSIGN_OR_RETURN(const double grace, flags.get_double("shutdown-grace", 5.0, 0.1, 600.0));
   options.shutdown_grace = std::chrono::milliseconds(static_cast<int64_t>(grace * 1000.0));
+  DDGI_ASSIGN_OR_RETURN(options.default_budget_ms,
+                        flags.get_double("budget-ms", 0.0, 0.0, tools::kMaxBudgetMs));
+  DDGI_ASSIGN_OR_RETURN(const std::string frame, flags.get_string("budget-frame", "1920x1080"));
+  const std::vector<std::string> sides = split(frame, 'x');
+  if (sides.size() != 2) return invalid_argument("--budget-frame '" + frame + "' is not WxH");
+  DDGI_ASSIGN_OR_RETURN(const int64_t width, parse_int(sides[0], "--budget-frame width"));
+  DDGI_ASSIGN_OR_RETURN(const int64_t height, parse_int(sides[1], "--budget-frame height"));
+  if (width < 16 || width > 16384 || height < 16 || height > 16384) {
+    return invalid_argument("--budget-frame must be 16..16384 pixels each way (got " + frame + ")");
+  }
+  options.budget_calibration.width = static_cast<uint32_t>(width);
+  options.budget_calibration.height = static_cast<uint32_t>(height);
   return options;
 }
 

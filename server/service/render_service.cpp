@@ -13,6 +13,7 @@
 #include "service/frame_stream.h"
 #include "service/grpc_status.h"
 #include "service/probe_stream.h"
+#include "service/session_budget.h"
 #include "service/text.h"
 
 #ifndef DDGI_VERSION
@@ -68,8 +69,10 @@ Status check_field_params(const google::protobuf::RepeatedPtrField<v1::FieldPara
     ShadowFieldParams scratch;
     return shadow_param_table().apply(scratch, assignments_of(params));
   }
+  std::vector<std::string> assignments = assignments_of(params);
+  DDGI_TRY(take_budget(assignments));
   IrradianceFieldParams scratch;
-  return field_param_table().apply(scratch, assignments_of(params));
+  return field_param_table().apply(scratch, assignments);
 }
 
 // Loading a library scene fails with messages naming server files: the client gets them
@@ -185,6 +188,9 @@ grpc::ServerUnaryReactor* RenderServiceImpl::GetServerInfo(grpc::CallbackServerC
     reply->set_gpu_memory_used_bytes(context_.allocated_bytes());
     reply->set_auth_required(auth_.enabled());
     describe_params(field_param_table(), reply->mutable_field_params());
+    auto* budget = reply->mutable_field_params()->Add();
+    budget->set_name(kBudgetParam);
+    budget->set_description(kBudgetParamHelp);
     describe_params(shadow_param_table(), reply->mutable_shadow_field_params());
     done(ok_status());
     return ok_status();
@@ -238,6 +244,7 @@ grpc::ServerUnaryReactor* RenderServiceImpl::CreateSession(grpc::CallbackServerC
     DDGI_ASSIGN_OR_RETURN(options.direct_mode, direct_mode_from_proto(request->direct_mode()));
     DDGI_TRY(check_field_params(request->field_params(), v1::FIELD_KIND_IRRADIANCE));
     options.field_assignments = assignments_of(request->field_params());
+    DDGI_ASSIGN_OR_RETURN(options.budget_ms, take_budget(options.field_assignments));
     if (!request->shadow_field_params().empty() && !uses_shadow_field(options.direct_mode)) {
       return invalid_argument(
           "shadow_field_params need direct_mode SHADOW_FIELD or AMBIENT_OCCLUSION (a session "

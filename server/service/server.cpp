@@ -38,6 +38,8 @@ class WithoutReflection : public grpc::ServerBuilderOption {
 
 Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOptions options) {
   DDGI_TRY(validate(options.limits));
+  DDGI_TRY(tools::validate(options.budget_calibration));
+  if (options.default_budget_ms != 0.0) DDGI_TRY(tools::check_budget_ms(options.default_budget_ms));
   if (options.tls_cert_file.empty() != options.tls_key_file.empty()) {
     return invalid_argument("TLS needs both --tls-cert and --tls-key");
   }
@@ -49,6 +51,9 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.limits = &server->options_.limits;
   env.metrics = &server->metrics_;
   env.encoder = server->encoder_.get();
+  server->budget_.default_ms = options.default_budget_ms;
+  server->budget_.calibration = options.budget_calibration;
+  env.budget = &server->budget_;
   server->sessions_ = std::make_unique<SessionRegistry>(env, options.test_session_loaded_hook);
   server->service_ = std::make_unique<RenderServiceImpl>(
       context, options.limits, SceneLibrary(options.scene_root), BearerAuth(options.auth_token),

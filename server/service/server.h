@@ -16,6 +16,7 @@
 #include "service/metrics.h"
 #include "service/metrics_http.h"
 #include "service/render_service.h"
+#include "service/session_budget.h"
 #include "service/session_registry.h"
 #include "service/web_gateway.h"
 #include "vk/context.h"
@@ -35,6 +36,10 @@ struct ServerOptions {
   WebOptions web;  // the browser client's front (off unless web.port >= 0)
   unsigned encode_threads = 2;
   std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
+  // The time budget (service/session_budget.h): budget_ms of sessions that set none (0: none;
+  // --budget-ms), and how its calibration measures (the budget's frame: --budget-frame).
+  double default_budget_ms = 0.0;
+  tools::CalibrationOptions budget_calibration;
   // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
   // health NOT_SERVING, refused new work and ended every session with the loss as their status;
   // on the thread that saw the loss, which it must not block. ddgi-server exits then, so its
@@ -71,6 +76,7 @@ class Server {
   ServerOptions options_;
   Metrics metrics_;
   std::unique_ptr<FrameEncoder> encoder_;
+  BudgetService budget_;  // before sessions_: their loops use it until they end
   std::unique_ptr<SessionRegistry> sessions_;
   std::unique_ptr<RenderServiceImpl> service_;
   std::unique_ptr<grpc::Server> server_;

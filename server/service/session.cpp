@@ -57,9 +57,9 @@ v1::SessionSummary Session::summary() const {
 
 Status Session::load(const SceneRequest& request) {
   finish_frames();
-  DDGI_ASSIGN_OR_RETURN(
-      std::unique_ptr<SessionScene> scene,
-      SessionScene::load(*env_.context, request, state_.options, *env_.limits, state_.id));
+  DDGI_ASSIGN_OR_RETURN(std::unique_ptr<SessionScene> scene,
+                        SessionScene::load(*env_.context, request, state_.options, *env_.limits,
+                                           *env_.budget, state_.id));
   if (scene->field()) env_.metrics->field_updates.fetch_add(request.warmup_updates);
   // The old scene (its renderer first) goes once the new one is on the GPU. View targets do
   // not depend on the scene and stay.
@@ -271,7 +271,7 @@ void Session::get_field_params(v1::FieldKind kind, v1::FieldParams* reply, Compl
         if (kind == v1::FIELD_KIND_SHADOW) {
           to_proto(*shadow_field(), loop_.applying_seq(), reply);
         } else {
-          to_proto(*field(), loop_.applying_seq(), reply);
+          to_proto(*state_.scene, loop_.applying_seq(), reply);
         }
         return ok_status();
       },
@@ -282,7 +282,7 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
                                v1::FieldParams* reply, Completion done) {
   loop_.enqueue_sync(
       true,
-      [this, kind, assignments, reply]() -> Status {
+      [this, kind, assignments, reply]() mutable -> Status {
         finish_frames();
         DDGI_TRY(require_field(kind));
         if (kind == v1::FIELD_KIND_SHADOW) {
@@ -291,10 +291,18 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
           DDGI_TRY(shadow_field()->set_params(params));
           to_proto(*shadow_field(), loop_.applying_seq(), reply);
         } else {
-          IrradianceFieldParams params = field()->params();
+          DDGI_ASSIGN_OR_RETURN(const std::optional<double> budget_ms, take_budget(assignments));
+          IrradianceFieldParams params =
+              budget_ms ? state_.scene->own_field_params() : field()->params();
           DDGI_TRY(field_param_table().apply(params, assignments));
-          DDGI_TRY(field()->set_params(params));
-          to_proto(*field(), loop_.applying_seq(), reply);
+          if (budget_ms) {
+            DDGI_TRY(state_.scene->set_field_budget(params, state_.options.direct_mode, *budget_ms,
+                                                    *env_.budget, state_.id));
+          } else {
+            DDGI_TRY(field()->set_params(params));
+            state_.scene->end_budget();  // set by hand: no longer the budget's choice
+          }
+          to_proto(*state_.scene, loop_.applying_seq(), reply);
         }
         LOG_INFO << "field parameters changed session=" << state_.id
                  << " field=" << (kind == v1::FIELD_KIND_SHADOW ? "shadow" : "irradiance")

@@ -43,6 +43,7 @@ struct SessionEnv {
   const ServiceLimits* limits = nullptr;
   Metrics* metrics = nullptr;
   FrameEncoder* encoder = nullptr;
+  BudgetService* budget = nullptr;  // the time budget's settings and calibration cache
   // Called on the loop thread after the loop ended and every GPU object is freed.
   std::function<void()> on_loop_exit;
 };

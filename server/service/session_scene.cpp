@@ -19,23 +19,45 @@ Result<Scene> read_scene(const SceneRequest& request, const ServiceLimits& limit
   return ::ddgi::load_scene(request.path, scene_limits);
 }
 
+void log_budget(const tools::BudgetChoice& c, const std::string& session_id,
+                const std::string& label) {
+  LOG_INFO << "time budget session=" << session_id << " scene=" << label
+           << " budget_ms=" << c.budget_ms << " chosen='" << c.chosen.candidate.name
+           << "' cost_ms=" << c.chosen.cost_ms() << " (field " << c.chosen.field_ms << " + frame "
+           << c.chosen.frame_ms << " at " << c.width << "x" << c.height
+           << ") flip=" << c.chosen.flip << " candidates=" << c.candidates
+           << (c.from_cache ? " calibration=cached" : " calibration_s=")
+           << (c.from_cache ? "" : std::to_string(c.calibration_seconds));
+}
+
 }  // namespace
 
-Result<std::unique_ptr<SessionScene>> SessionScene::load(vk::Context& context,
-                                                         const SceneRequest& request,
-                                                         const SessionOptions& options,
-                                                         const ServiceLimits& limits,
-                                                         const std::string& session_id) {
+Result<std::unique_ptr<SessionScene>> SessionScene::load(
+    vk::Context& context, const SceneRequest& request, const SessionOptions& options,
+    const ServiceLimits& limits, BudgetService& budget, const std::string& session_id) {
   DDGI_ASSIGN_OR_RETURN(Scene scene, read_scene(request, limits));
   for (const std::string& warning : scene.warnings) {
     LOG_WARNING << "scene warning session=" << session_id << " scene=" << request.label << ": "
                 << warning;
   }
   DDGI_ASSIGN_OR_RETURN(
-      const GiStackOptions gi_options,
+      GiStackOptions gi_options,
       fitted_gi_options(scene, options.gi, options.direct_mode, options.field_assignments,
                         options.shadow_assignments, context.default_backend()));
   std::unique_ptr<SessionScene> loaded(new SessionScene());
+  const double budget_ms = options.budget_ms.value_or(budget.default_ms);
+  if (budget_ms > 0.0 && !options.gi && options.budget_ms) {
+    return failed_precondition(
+        "budget_ms chooses the irradiance field's configuration; this session has gi false");
+  }
+  if (budget_ms > 0.0 && options.gi) {  // the server's default skips sessions without a field
+    loaded->budget_base_ = gi_options.field;
+    DDGI_ASSIGN_OR_RETURN(
+        loaded->budget_,
+        tools::apply_budget(context, scene, ::ddgi::default_camera(scene), gi_options, budget_ms,
+                            budget.calibration, budget.cache));
+    log_budget(*loaded->budget_, session_id, request.label);
+  }
   DDGI_ASSIGN_OR_RETURN(loaded->gi_, GiStack::create(context, scene, gi_options));
   // As ddgi-render does: fast convergence first, then the configured hysteresis.
   DDGI_TRY(loaded->gi_->warm_up(request.warmup_updates));
@@ -51,6 +73,29 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(vk::Context& context,
            << " gpu_bytes=" << loaded->gpu_scene().gpu_bytes() + (field ? field->gpu_bytes() : 0)
            << " warmup=" << (field ? request.warmup_updates : 0);
   return loaded;
+}
+
+Status SessionScene::set_field_budget(const IrradianceFieldParams& params, DirectMode direct_mode,
+                                      double budget_ms, BudgetService& budget,
+                                      const std::string& session_id) {
+  if (budget_ms == 0.0) {
+    DDGI_TRY(field()->set_params(params));
+    budget_.reset();
+    return ok_status();
+  }
+  GiStackOptions base;
+  base.direct_mode = direct_mode;
+  base.backend = context_->default_backend();
+  base.field = params;
+  if (shadow_field()) base.shadow = shadow_field()->params();
+  DDGI_ASSIGN_OR_RETURN(tools::BudgetChoice choice,
+                        tools::apply_budget(*context_, gpu_scene().scene(), default_camera_, base,
+                                            budget_ms, budget.calibration, budget.cache));
+  DDGI_TRY(field()->set_params(base.field));
+  budget_ = std::move(choice);
+  budget_base_ = params;
+  log_budget(*budget_, session_id, label_);
+  return ok_status();
 }
 
 uint64_t SessionScene::gpu_bytes() const {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "scene/scene.h"
 #include "service/light_set.h"
 #include "service/limits.h"
+#include "service/session_budget.h"
 #include "vk/context.h"
 
 namespace ddgi::service {
@@ -35,17 +37,19 @@ struct SessionOptions {
   // Shadow-field "name=value" over the grid fitted to the scene; the field exists only in the
   // shadow-field and AO direct modes.
   std::vector<std::string> shadow_assignments;
+  // The time budget (field parameter budget_ms): nothing takes the server's --budget-ms; 0 none.
+  std::optional<double> budget_ms;
 };
 
 class SessionScene {
  public:
   // Loads the scene (a library file, or an upload within the upload limit), builds its GI stack
-  // and runs the warm-up. `session_id` is for the log.
-  static Result<std::unique_ptr<SessionScene>> load(vk::Context& context,
-                                                    const SceneRequest& request,
-                                                    const SessionOptions& options,
-                                                    const ServiceLimits& limits,
-                                                    const std::string& session_id);
+  // and runs the warm-up. With a time budget (options.budget_ms, else budget.default_ms) the
+  // field's configuration is the budget's choice (calibrated or cached). `session_id` is for
+  // the log.
+  static Result<std::unique_ptr<SessionScene>> load(
+      vk::Context& context, const SceneRequest& request, const SessionOptions& options,
+      const ServiceLimits& limits, BudgetService& budget, const std::string& session_id);
 
   const std::string& label() const { return label_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -53,6 +57,19 @@ class SessionScene {
   GpuScene& gpu_scene() const { return gi_->scene(); }
   IrradianceField* field() const { return gi_->field(); }
   ShadowField* shadow_field() const { return gi_->shadow_field(); }
+  // The time budget's choice the field follows, if any.
+  const std::optional<tools::BudgetChoice>& budget() const { return budget_; }
+  // The field's parameters as the session set them: under a budget, those its choice was
+  // applied over (a new budget starts from them, not from the last choice).
+  const IrradianceFieldParams& own_field_params() const {
+    return budget_ ? budget_base_ : field()->params();
+  }
+  // Sets the field to the best configuration within `budget_ms` over `params` (own_field_params()
+  // with a request's other assignments); 0 ends the budget and sets `params`.
+  Status set_field_budget(const IrradianceFieldParams& params, DirectMode direct_mode,
+                          double budget_ms, BudgetService& budget, const std::string& session_id);
+  // Parameters set by hand: the field no longer follows a budget.
+  void end_budget() { budget_.reset(); }
   // The scene's and both fields' GPU bytes.
   uint64_t gpu_bytes() const;
 
@@ -80,6 +97,8 @@ class SessionScene {
   std::unique_ptr<GiStack> gi_;
   std::unique_ptr<Renderer> renderer_;  // after gi_: it points at its scene and fields
   LightSet lights_;
+  std::optional<tools::BudgetChoice> budget_;
+  IrradianceFieldParams budget_base_;  // what budget_ was chosen over
 };
 
 }  // namespace ddgi::service

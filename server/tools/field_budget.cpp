@@ -151,10 +151,28 @@ uint64_t scene_hash(const Scene& scene) {
     hash = fnv1a(hash, &material.emissive, sizeof(material.emissive));
     hash = fnv1a(hash, &material.base_color_texture, sizeof(material.base_color_texture));
   }
-  for (const Light& light : scene.lights) hash = fnv1a(hash, &light, sizeof(light));
-  hash = fnv1a(hash, &scene.environment.color, sizeof(scene.environment.color));
-  hash = fnv1a(hash, &scene.environment.intensity, sizeof(scene.environment.intensity));
-  return hash;
+  for (const Light& light : scene.lights) {
+    // Member by member: the struct holds a name (a pointer) and padding.
+    for (const float value :
+         {float(light.type), light.color.x, light.color.y, light.color.z, light.intensity,
+          light.range, light.inner_cone_angle, light.outer_cone_angle, light.position.x,
+          light.position.y, light.position.z, light.direction.x, light.direction.y,
+          light.direction.z, light.radius}) {
+      hash = fnv1a(hash, &value, sizeof(value));
+    }
+  }
+  // Textures and the environment image by size only: hashing their pixels would cost more than
+  // it saves on every load, and a scene that changes only its pixels is rare.
+  for (const Texture& texture : scene.textures) {
+    hash = fnv1a(hash, &texture.width, sizeof(texture.width));
+    hash = fnv1a(hash, &texture.height, sizeof(texture.height));
+  }
+  const Environment& environment = scene.environment;
+  hash = fnv1a(hash, &environment.color, sizeof(environment.color));
+  hash = fnv1a(hash, &environment.intensity, sizeof(environment.intensity));
+  hash = fnv1a(hash, &environment.rotation_y, sizeof(environment.rotation_y));
+  const uint32_t image_width = environment.image ? environment.image->width : 0;
+  return fnv1a(hash, &image_width, sizeof(image_width));
 }
 
 // Every parameter of the table as text, in its order.
@@ -307,8 +325,11 @@ std::string calibration_key(const vk::Context& context, const Scene& scene,
       << context.caps().driver_name << "|" << options.width << "x" << options.height << "|"
       << options.reference_spp << "|" << options.warmup_updates << "|" << options.timed_frames
       << "|" << static_cast<int>(base.direct_mode) << "|" << static_cast<int>(base.backend) << "|"
-      << params_text(field_param_table(), base.field) << "|"
-      << params_text(shadow_param_table(), base.shadow);
+      << params_text(field_param_table(), base.field);
+  // The shadow field's parameters count only where there is one.
+  if (uses_shadow_field(shadow_field_mode(base.direct_mode, &base.field))) {
+    key << "|" << params_text(shadow_param_table(), base.shadow);
+  }
   for (const double ms : options.injected_ms) key << "|" << ms;
   return key.str();
 }
@@ -328,6 +349,9 @@ Result<BudgetChoice> apply_budget(vk::Context& context, const Scene& scene, cons
           choice.from_cache));
   DDGI_ASSIGN_OR_RETURN(const size_t index, choose_within_budget(calibration, budget_ms));
   choice.chosen = calibration.candidates[index];
+  choice.device = calibration.device;
+  choice.width = calibration.width;
+  choice.height = calibration.height;
   choice.candidates = calibration.candidates.size();
   choice.calibration_seconds = calibration.seconds;
   DDGI_TRY(field_param_table().apply(base.field, choice.chosen.candidate.assignments));

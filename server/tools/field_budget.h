@@ -94,6 +94,8 @@ Result<size_t> choose_within_budget(const Calibration& calibration, double budge
 // A budget's outcome, as sessions report it.
 struct BudgetChoice {
   double budget_ms = 0.0;
+  std::string device;  // the calibration's
+  uint32_t width = 0, height = 0;
   CalibratedCandidate chosen;
   size_t candidates = 0;
   double calibration_seconds = 0.0;

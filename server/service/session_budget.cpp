@@ -1,0 +1,55 @@
+// The budget_ms field parameter and its report (service/session_budget.h).
+#include "service/session_budget.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace ddgi::service {
+
+Result<std::optional<double>> take_budget(std::vector<std::string>& assignments) {
+  const std::string prefix = std::string(kBudgetParam) + "=";
+  std::optional<double> budget;
+  std::vector<std::string> rest;
+  for (std::string& assignment : assignments) {
+    if (assignment.rfind(prefix, 0) != 0) {
+      rest.push_back(std::move(assignment));
+      continue;
+    }
+    const std::string text = assignment.substr(prefix.size());
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+      return invalid_argument(std::string(kBudgetParam) + " '" + text +
+                              "' is not a number of milliseconds");
+    }
+    if (value != 0.0) DDGI_TRY(tools::check_budget_ms(value));
+    budget = value;
+  }
+  assignments = std::move(rest);
+  return budget;
+}
+
+void to_proto(const tools::BudgetChoice& choice, v1::FieldBudget* out) {
+  const tools::CalibratedCandidate& c = choice.chosen;
+  out->set_budget_ms(choice.budget_ms);
+  out->set_configuration(c.candidate.name);
+  for (const std::string& assignment : c.candidate.assignments) {
+    const size_t eq = assignment.find('=');
+    auto* param = out->add_params();
+    param->set_name(assignment.substr(0, eq));
+    param->set_value(eq == std::string::npos ? "" : assignment.substr(eq + 1));
+  }
+  out->set_cost_ms(c.cost_ms());
+  out->set_field_ms(c.field_ms);
+  out->set_frame_ms(c.frame_ms);
+  out->set_flip(c.flip);
+  out->set_mean_ratio(c.mean_ratio);
+  out->set_width(choice.width);
+  out->set_height(choice.height);
+  out->set_device(choice.device);
+  out->set_candidates(static_cast<uint32_t>(choice.candidates));
+  out->set_calibration_seconds(choice.calibration_seconds);
+  out->set_from_cache(choice.from_cache);
+}
+
+}  // namespace ddgi::service
