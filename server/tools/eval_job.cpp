@@ -1,6 +1,7 @@
 // ddgi-eval's shared parts: the flags a job is made of, the field configurations it compares,
 // and how a frame is scored against its reference (see eval_job.h).
 #include "tools/eval_job.h"
+#include "tools/field_budget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -134,6 +135,11 @@ Result<EvalJob> parse_job(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(job.camera_path, flags.get_string("path", ""));
   DDGI_ASSIGN_OR_RETURN(job.path_rate, flags.get_double("path-rate", 30.0, 1.0, 1000.0));
   DDGI_ASSIGN_OR_RETURN(job.path_every, flags.get_double("path-every", 10.0, 0.01, 1e6));
+  DDGI_ASSIGN_OR_RETURN(job.budgets, flags.get_doubles("budgets", 1, 16));
+  for (const double budget : job.budgets) DDGI_TRY(check_budget_ms(budget));
+  if (!job.budgets.empty() && flags.has("configs")) {
+    return invalid_argument("--budgets measures the budget's own candidates: drop --configs");
+  }
   return job;
 }
 

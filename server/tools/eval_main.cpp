@@ -3,7 +3,8 @@
 // everything but punctual direct light), then for every field configuration a warmed-up DDGI
 // frame, compared with PSNR, SSIM and FLIP on the tone-mapped images. One markdown table.
 // With --dynamic: how many frames each configuration (and the path tracer restarted at the
-// change) needs after a light or an object moves (tools/dynamic_response.h).
+// change) needs after a light or an object moves (tools/dynamic_response.h). With --budgets:
+// the time budget's choice against the measured trade (tools/budget_eval.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/budget_eval.h"
 #include "tools/dynamic_response.h"
 #include "tools/eval_job.h"
 #include "tools/pareto.h"
@@ -88,6 +90,12 @@ readbacks not included).
                         DIR/SCENE.path.svg and .csv (FLIP along the path)
   --path-rate N         frames per second of the path                  [30]
   --path-every S        seconds between scored views                   [10]
+  --budgets LIST        the time budget (budget_ms) checked: the table's configurations
+                        are the budget's candidates for each scene; then the server's
+                        calibration runs and, per budget in LIST (ms per frame, comma-
+                        separated), its choice is printed beside the measurements: the
+                        chosen configuration's measured ms over the budget and its FLIP
+                        over the best measured configuration within the budget
   --backend B           auto | query | pipeline                         [auto]
 )";
 
@@ -351,7 +359,7 @@ Status run(int argc, char** argv) {
       Flags flags, Flags::parse(argc, argv,
                                 {"width", "height", "spp", "warmup", "frames", "configs", "field",
                                  "out-dir", "backend", "pareto", "pt-max-spp", "dynamic",
-                                 "response-frames", "path", "path-rate", "path-every"},
+                                 "response-frames", "path", "path-rate", "path-every", "budgets"},
                                 {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
@@ -374,6 +382,7 @@ Status run(int argc, char** argv) {
       "mean/ref | indirect: PSNR | SSIM | FLIP | mean/ref | field ms | frame ms |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<tools::SceneTrade> trades;
+  std::vector<std::string> budget_rows;
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     const std::string stem = tools::file_stem(scene_path);
@@ -381,10 +390,19 @@ Status run(int argc, char** argv) {
         const ReferencePair refs,
         tools::make_references(*context, job, scene, default_camera(scene), stem));
     tools::SceneTrade trade{stem, job.width, job.height, static_cast<uint32_t>(job.spp), {}, {}};
-    for (const Config& config : job.configs) {
+    std::vector<Config> configs = job.configs;
+    if (!job.budgets.empty()) {
+      DDGI_ASSIGN_OR_RETURN(configs, tools::budget_configs(*context, job, scene));
+    }
+    for (const Config& config : configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ConfigPoint point,
                             evaluate_config(*context, job, scene, stem, refs, config));
       trade.configs.push_back(std::move(point));
+    }
+    if (!job.budgets.empty()) {
+      DDGI_ASSIGN_OR_RETURN(const auto rows,
+                            tools::budget_rows(*context, job, scene, stem, trade.configs));
+      budget_rows.insert(budget_rows.end(), rows.begin(), rows.end());
     }
     if (job.pareto_dir.empty()) continue;
     DDGI_ASSIGN_OR_RETURN(trade.path_tracing, path_trace_curve(*context, job, scene, refs));
@@ -392,6 +410,7 @@ Status run(int argc, char** argv) {
     trades.push_back(std::move(trade));
   }
   if (!trades.empty()) print_fronts(trades);
+  if (!budget_rows.empty()) tools::print_budget_table(budget_rows);
   return ok_status();
 }
 

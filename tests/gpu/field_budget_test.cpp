@@ -1,12 +1,19 @@
 // The time budget (tools/field_budget.h): candidates from scene analysis, a calibration that
 // scores every candidate against the path tracer (costs injected: lavapipe's times mean nothing),
-// the choice of the lowest error that fits, the refusal of a budget nothing fits, and the cache.
+// the choice of the lowest error that fits, the refusal of a budget nothing fits, the cache, and
+// ddgi-eval --budgets, which checks the choice against the measured trade.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
+#include <map>
+#include <sstream>
 
 #include "gi/field_params.h"
+#include "tests/gpu/cli_run.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 #include "tools/field_budget.h"
@@ -154,6 +161,51 @@ TEST_F(FieldBudgetTest, ApplyBudgetSetsTheChoiceAndCachesTheCalibration) {
       tools::apply_budget(context(), scene, scene.cameras[0], third, 0.5, options, cache);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(third.field.rays_per_probe, base.field.rays_per_probe);
+}
+
+// ddgi-eval --budgets end to end: the table measures the budget's candidates, then a budget
+// everything fits picks one of them (its row's measured FLIP is that configuration's in the
+// table) and a budget nothing fits is refused by name. Planted: the chosen row showing another
+// configuration's measurements fails the FLIP check.
+TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ddgi-budget-eval-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const CliRun run = run_cli(DDGI_EVAL_EXE,
+                             "scenes/cornell_box.gltf --width 40 --height 30 --spp 16 --warmup 4 "
+                             "--frames 1 --field counts=4,4,4 --budgets 1e6,1e-6",
+                             dir);
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  std::map<std::string, std::string> table_flip;  // configuration -> full-image FLIP
+  std::vector<std::vector<std::string>> budget_rows;
+  std::istringstream lines(run.out);
+  for (std::string line; std::getline(lines, line);) {
+    const std::vector<std::string> cells = markdown_cells(line);
+    if (cells.size() == 13 && cells[0] == "cornell_box") table_flip[cells[1]] = cells[5];
+    if (cells.size() == 9 && cells[0] == "cornell_box") budget_rows.push_back(cells);
+  }
+  // Rays 32..256 x {4x4x4, 2x2x2}: no emissive surface in the box.
+  EXPECT_EQ(table_flip.size(), 8u) << run.out;
+  EXPECT_TRUE(table_flip.count("rays 128, coarse")) << run.out;
+  ASSERT_EQ(budget_rows.size(), 2u) << run.out;
+  const std::vector<std::string>& fits = budget_rows[0];
+  EXPECT_EQ(fits[1], "1e+06");
+  ASSERT_TRUE(table_flip.count(fits[2])) << "chosen '" << fits[2] << "'\n" << run.out;
+  EXPECT_DOUBLE_EQ(std::stod(fits[6]), std::stod(table_flip[fits[2]])) << run.out;
+  EXPECT_GT(std::stod(fits[3]), 0.0);  // calibrated ms
+  EXPECT_GT(std::stod(fits[4]), 0.0);  // measured ms
+  EXPECT_GE(std::stod(fits[8]), 1.0);  // FLIP over the best within the budget: all fit
+  EXPECT_NE(budget_rows[1][2].find("refused: budget_ms 1e-06 cannot be met"), std::string::npos)
+      << run.out;
+
+  const CliRun bad = run_cli(DDGI_EVAL_EXE, "scenes/cornell_box.gltf --budgets 2,0", dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("budget_ms must be in (0, 1e+06]"), std::string::npos) << bad.err;
+  const CliRun both =
+      run_cli(DDGI_EVAL_EXE, "scenes/cornell_box.gltf --budgets 2 --configs a:", dir);
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("drop --configs"), std::string::npos) << both.err;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
