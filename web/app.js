@@ -331,6 +331,31 @@ function showField(field) {
     ? `${field.probes} probes, ${(Number(field.gpuBytes) / 2 ** 20).toFixed(1)} MiB, ` +
       `${field.updates} updates`
     : 'no irradiance field';
+  // The time budget's choice (FieldParams.budget), while the field follows one.
+  const budget = field?.budget;
+  $('budget-info').textContent = budget
+    ? `Budget ${budget.budgetMs} ms at ${budget.width}x${budget.height}: ${budget.configuration}, ` +
+      `measured ${Number(budget.costMs).toFixed(2)} ms, FLIP ${Number(budget.flip).toFixed(3)} ` +
+      `(${budget.candidates} configurations${budget.fromCache ? ', calibrated before' : ''})`
+    : '';
+}
+
+// Asks the server for its best field configuration within the budget (field parameter
+// budget_ms; empty or 0 ends it). Calibrating a new scene takes a few seconds.
+async function applyBudget() {
+  const value = $('budget').value.trim() === '' ? '0' : $('budget').value.trim();
+  $('budget-info').textContent = value === '0' ? '' : 'calibrating...';
+  try {
+    const field = await state.socket.call('setFieldParams', {
+      sessionId: state.session.sessionId,
+      params: [{ name: 'budget_ms', value }],
+    });
+    showField(field);
+    showError('');
+  } catch (error) {
+    $('budget-info').textContent = '';
+    showError(describe(error));
+  }
 }
 
 async function applyField() {
@@ -447,6 +472,7 @@ function bindControls() {
   $('refresh').addEventListener('click', () => refreshSessions().catch((e) => showError(describe(e))));
   $('leave').addEventListener('click', leave);
   $('apply-field').addEventListener('click', applyField);
+  $('apply-budget').addEventListener('click', applyBudget);
   $('view-mode').addEventListener('change', changeViewMode);
   $('light').addEventListener('change', selectLight);
   for (const axis of ['x', 'y', 'z']) $(`light-${axis}`).addEventListener('input', moveLight);

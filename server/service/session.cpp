@@ -292,12 +292,14 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
           to_proto(*shadow_field(), loop_.applying_seq(), reply);
         } else {
           DDGI_ASSIGN_OR_RETURN(const std::optional<double> budget_ms, take_budget(assignments));
+          // A new budget starts from the session's own parameters; anything else (budget_ms 0
+          // included) from the field as it is.
           IrradianceFieldParams params =
-              budget_ms ? state_.scene->own_field_params() : field()->params();
+              budget_ms.value_or(0.0) > 0.0 ? state_.scene->own_field_params() : field()->params();
           DDGI_TRY(field_param_table().apply(params, assignments));
           if (budget_ms) {
             DDGI_TRY(state_.scene->set_field_budget(params, state_.options.direct_mode, *budget_ms,
-                                                    *env_.budget, state_.id));
+                                                    assignments.empty(), *env_.budget, state_.id));
           } else {
             DDGI_TRY(field()->set_params(params));
             state_.scene->end_budget();  // set by hand: no longer the budget's choice

@@ -76,10 +76,11 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
 }
 
 Status SessionScene::set_field_budget(const IrradianceFieldParams& params, DirectMode direct_mode,
-                                      double budget_ms, BudgetService& budget,
-                                      const std::string& session_id) {
+                                      double budget_ms, bool ends_budget_only,
+                                      BudgetService& budget, const std::string& session_id) {
   if (budget_ms == 0.0) {
-    DDGI_TRY(field()->set_params(params));
+    // Ending a budget alone keeps the field as it is: no restart for the same parameters.
+    if (!ends_budget_only) DDGI_TRY(field()->set_params(params));
     budget_.reset();
     return ok_status();
   }

@@ -65,9 +65,11 @@ class SessionScene {
     return budget_ ? budget_base_ : field()->params();
   }
   // Sets the field to the best configuration within `budget_ms` over `params` (own_field_params()
-  // with a request's other assignments); 0 ends the budget and sets `params`.
+  // with a request's other assignments); 0 ends the budget and sets `params`, or leaves the
+  // field as it is when the request set nothing else (`ends_budget_only`).
   Status set_field_budget(const IrradianceFieldParams& params, DirectMode direct_mode,
-                          double budget_ms, BudgetService& budget, const std::string& session_id);
+                          double budget_ms, bool ends_budget_only, BudgetService& budget,
+                          const std::string& session_id);
   // Parameters set by hand: the field no longer follows a budget.
   void end_budget() { budget_.reset(); }
   // The scene's and both fields' GPU bytes.

@@ -110,9 +110,18 @@ TEST_F(BudgetTest, RefusalsNameTheProblemAndChangeNothing) {
   EXPECT_EQ(now.budget().configuration(), info.field().budget().configuration());
   EXPECT_EQ(param(now, "rays_per_probe"), param(info.field(), "rays_per_probe"));
 
-  // Set by hand: the field no longer follows the budget.
+  // Ended (budget_ms 0): the report goes, the field stays as it is (not restarted: its update
+  // count goes on); set by hand likewise, but restarted as any parameter change is.
+  ASSERT_GT(now.updates(), 0u);
+  ASSERT_TRUE(set_field(session, "budget_ms", "0", &reply).ok());
+  EXPECT_FALSE(reply.has_budget());
+  EXPECT_EQ(param(reply, "rays_per_probe"), param(info.field(), "rays_per_probe"));
+  EXPECT_GE(reply.updates(), now.updates());
+  ASSERT_TRUE(set_field(session, "budget_ms", "1e6", &reply).ok());
+  ASSERT_TRUE(reply.has_budget());
   ASSERT_TRUE(set_field(session, "hysteresis", "0.9", &reply).ok());
   EXPECT_FALSE(reply.has_budget());
+  EXPECT_EQ(param(reply, "rays_per_probe"), param(info.field(), "rays_per_probe"));
 
   v1::CreateSessionRequest no_field = budget_request("4");
   no_field.set_gi(false);

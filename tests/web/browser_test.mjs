@@ -168,6 +168,30 @@ async function streamShowsAndDragMovesTheCamera(page) {
   }
 }
 
+// The time budget from the page: a budget everything fits shows the server's choice (the
+// server calibrates at --budget-frame 64x36 here, seconds on lavapipe); one nothing fits shows
+// the server's refusal and leaves the choice shown; an empty budget ends it.
+async function timeBudgetIsChosenAndShown(page) {
+  const setBudget = async (value) => {
+    await page.$eval('#budget', (input, v) => { input.value = v; }, value);
+    await page.click('#apply-budget');
+  };
+  await setBudget('1000000');
+  await page.waitForFunction(() => document.querySelector('#budget-info').textContent.startsWith('Budget'),
+    { timeout: COMMAND_DEADLINE_MS, polling: 100 });
+  const chosen = await page.$eval('#budget-info', (e) => e.textContent);
+  check(/^Budget 1000000 ms at 64x36: rays \d+.*, measured \d+\.\d+ ms, FLIP 0\.\d+ \(8 configurations\)$/.test(chosen),
+    `the page shows the budget's choice ("${chosen}")`);
+  await setBudget('0.000001');
+  await page.waitForFunction(() => !document.querySelector('#error').hidden,
+    { timeout: COMMAND_DEADLINE_MS, polling: 100 });
+  const refusal = await page.$eval('#error', (e) => e.textContent);
+  check(refusal.includes('budget_ms 1e-06 cannot be met'), `the page shows the refusal ("${refusal}")`);
+  await setBudget('');
+  await page.waitForFunction(() => document.querySelector('#budget-info').textContent === '' &&
+    document.querySelector('#error').hidden, { timeout: COMMAND_DEADLINE_MS, polling: 100 });
+}
+
 // Mean absolute RGB difference (of 255) allowed between the page's own indirect image and the
 // server's frame of the same view: JPEG (quality 85, 4:2:0) and rasterized vs ray-traced edges.
 const LOCAL_TOLERANCE = 2.5;
@@ -440,7 +464,7 @@ async function main() {
   const dir = mkdtempSync(join(tmpdir(), 'ddgi-web-'));
   const tokenFile = join(dir, 'token');
   writeFileSync(tokenFile, `${TOKEN}\n`);
-  const server = startServer(['--auth-token-file', tokenFile]);
+  const server = startServer(['--auth-token-file', tokenFile, '--budget-frame', '64x36']);
   const url = await server.url;
   const browser = await puppeteer.launch({
     executablePath: chromiumPath,
@@ -458,6 +482,7 @@ async function main() {
     await tokenIsAskedForAndChecked(page);
     await streamShowsAndDragMovesTheCamera(page);
     await localModeMatchesTheServersFrame(page);
+    await timeBudgetIsChosenAndShown(page);
     if (failed) throw failed;
   } finally {
     await stopServer(server);
