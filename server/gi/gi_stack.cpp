@@ -39,7 +39,7 @@ Result<std::vector<vk::Pass>> gi_update_passes(IrradianceField* field, ShadowFie
   std::vector<vk::Pass> passes;
   const DirectMode shadow_mode =
       shadow_field_mode(frame_mode, field && updates.field > 0 ? &field->params() : nullptr);
-  if (shadow_field && uses_shadow_field(shadow_mode)) {
+  if (shadow_field && uses_shadow_field(shadow_mode) && shadow_field->needs_update(shadow_mode)) {
     for (uint32_t i = 0; i < updates.shadow_field; ++i) {
       std::vector<vk::Pass> update = shadow_field->update_passes(shadow_mode);
       passes.insert(passes.end(), update.begin(), update.end());
@@ -77,8 +77,9 @@ DirectMode GiStack::shadow_update_mode(DirectMode frame_mode) const {
 }
 
 Status GiStack::update_shadow_field(uint32_t count) {
-  if (!shadow_field_ || count == 0) return ok_status();
-  const auto times = shadow_field_->update(count, shadow_update_mode(options_.direct_mode));
+  const DirectMode mode = shadow_update_mode(options_.direct_mode);
+  if (!shadow_field_ || count == 0 || !shadow_field_->needs_update(mode)) return ok_status();
+  const auto times = shadow_field_->update(count, mode);
   return times.ok() ? ok_status() : Status(times.error());
 }
 

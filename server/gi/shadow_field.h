@@ -67,6 +67,13 @@ class ShadowField {
 
   // Lights the atlas holds now: min(scene lights, max_lights).
   uint32_t kept_lights() const;
+  // Whether an update in `mode` changes anything its readers sample: the AO mode reads the
+  // moments; the shadow-field mode only the kept lights' visibility, so a scene without a
+  // punctual light (lit by emitters or the sky) has nothing to update (the field models only
+  // what the scene has; updates resume when a light is added).
+  bool needs_update(DirectMode mode) const {
+    return mode == DirectMode::kAmbientOcclusion || kept_lights() > 0;
+  }
   // The persistent atlases (RGBA32F, GENERAL layout), for dumps (the service's DumpAtlas).
   const vk::Image& visibility_atlas() const { return visibility_; }
   const vk::Image& moments_atlas() const { return moments_; }

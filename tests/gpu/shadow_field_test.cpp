@@ -1,12 +1,14 @@
 // The shadow field on lavapipe (docs/shadow-field.md): convergence to traced visibility on
 // box_on_floor (point and spherical light), following a moving light, ambient occlusion, the
-// split update, cosine vs wrap weights on the door scene, and both backends.
+// split update, cosine vs wrap weights on the door scene, no updates without punctual lights,
+// and both backends.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "gi/gi_stack.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/shadow_test_support.h"
 
@@ -241,6 +243,40 @@ TEST_F(ShadowFieldTest, BackendsAgree) {
   }
   std::printf("backends: largest difference %.2e\n", worst);
   EXPECT_LE(worst, 1e-4f);
+}
+
+// The shadow field models only what the scene has: in the shadow-field mode a scene without a
+// punctual light records no shadow-field update (nothing samples it); once a light is added the
+// updates come back, and the AO mode (which reads the moments) updates without lights.
+// Planted: needs_update() always true records 5 passes for the unlit scene.
+TEST_F(ShadowFieldTest, NotUpdatedWhereTheSceneHasNoPunctualLight) {
+  Scene scene = load_repo_scene("box_on_floor.gltf");
+  const std::vector<Light> lights = scene.lights;
+  ASSERT_FALSE(lights.empty());
+  scene.lights.clear();
+  scene.environment.color = glm::vec3(0.5f);  // lit by the sky alone
+  GiStackOptions options;
+  options.gi = false;
+  options.direct_mode = DirectMode::kShadowField;
+  options.shadow = box_on_floor_grid();
+  options.backend = context().default_backend();
+  auto gi = GiStack::create(context(), scene, options);
+  ASSERT_TRUE(gi.ok()) << gi.error().message;
+  auto shadow_passes = [&](DirectMode mode) {
+    auto passes = gi_update_passes(nullptr, (*gi)->shadow_field(), mode, {});
+    EXPECT_TRUE(passes.ok()) << passes.error().message;
+    size_t count = 0;
+    for (const vk::Pass& pass : passes.ok() ? *passes : std::vector<vk::Pass>{}) {
+      count += pass.group == vk::PassGroup::kShadowField;
+    }
+    return count;
+  };
+  ASSERT_NE((*gi)->shadow_field(), nullptr);
+  EXPECT_EQ(shadow_passes(DirectMode::kShadowField), 0u);
+  EXPECT_GT(shadow_passes(DirectMode::kAmbientOcclusion), 0u);
+  EXPECT_TRUE((*gi)->warm_up(2).ok());  // nothing to update, nothing recorded: no error either
+  ASSERT_TRUE((*gi)->scene().set_lights(lights).ok());
+  EXPECT_GT(shadow_passes(DirectMode::kShadowField), 0u);
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The time budget on the H200 (issue 14, "--budget-ms"; docs/service.md "Time budget"): for the
+# six scenes at 1080p, every budget candidate measured as ddgi-eval measures it (GPU medians,
+# FLIP against a 256-spp reference), then the server's own calibration and its choice for 1, 2,
+# 4 and 8 ms beside the measurements: the chosen configuration's measured ms over the budget
+# (goal <= 1.1) and its FLIP over the best measured configuration within the budget (goal <= 1.1).
+# Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-eval` carried
+# (.devcarry, .gl); one batch per call keeps each under the 10-minute limit:
+#   budget.sh OUT 1    cornell_box, two_rooms_open, veach_ajar
+#   budget.sh OUT 2    staircase, modern_hall, living_room
+set -euo pipefail
+out=${1:?OUT}
+batch=${2:?BATCH (1 or 2)}
+[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
+mkdir -p ../shared && rm -rf ../shared/scenes && ln -s "$PWD/.devcarry/scenes" ../shared/scenes
+mkdir -p "$out"
+case $batch in
+  1) scenes="scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/veach_ajar.ddgi.json" ;;
+  2) scenes="scenes/staircase.ddgi.json scenes/modern_hall.ddgi.json scenes/living_room.ddgi.json" ;;
+  *) echo "budget.sh: BATCH must be 1 or 2" >&2; exit 2 ;;
+esac
+# shellcheck disable=SC2086  # the scene list is words
+ddgi-eval $scenes --width 1920 --height 1080 --spp 256 --warmup 64 --frames 9 \
+  --backend pipeline --budgets 1,2,4,8 2>&1 | tee "$out/budget-$batch.txt"
