@@ -295,17 +295,10 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
 
 IrradianceFieldParams default_field_params(const Scene& scene) {
   static_assert(kMaxSceneProbeVolumes + 1 == gpu::kMaxFieldVolumes);
-  IrradianceFieldParams params;
-  if (scene.probe_grid) {
-    params.origin = scene.probe_grid->origin;
-    params.spacing = scene.probe_grid->spacing;
-    params.counts = scene.probe_grid->counts;
-  } else {
-    params = fit_grid_to_bounds(scene.world_bounds());
-  }
-  for (const ProbeGridHint& volume : scene.probe_volumes) {
-    params.static_volumes.push_back({volume.origin, volume.spacing, volume.counts});
-  }
+  IrradianceFieldParams params = scene.probe_grid
+                                     ? placed(IrradianceFieldParams{}, *scene.probe_grid)
+                                     : fit_grid_to_bounds(scene.world_bounds());
+  params.static_volumes = scene.probe_volumes;
   return params;
 }
 

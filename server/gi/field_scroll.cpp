@@ -59,21 +59,27 @@ Status IrradianceField::scroll(uint32_t volume, glm::ivec3 cells, ScrollStart st
   return ok_status();
 }
 
+std::vector<std::pair<uint32_t, glm::ivec3>> IrradianceField::tracking_scrolls(
+    glm::vec3 camera) const {
+  std::vector<std::pair<uint32_t, glm::ivec3>> scrolls;
+  if (!params_.track_camera) return scrolls;
+  for (uint32_t v = 0; v < volumes_.size(); ++v) {
+    if (!volumes_[v].grid.tracks(params_)) continue;
+    const glm::ivec3 cells = tracking_scroll(volumes_[v].grid, camera);
+    if (cells != glm::ivec3(0)) scrolls.push_back({v, cells});
+  }
+  return scrolls;
+}
+
 bool IrradianceField::tracking_would_scroll(glm::vec3 camera) const {
-  if (!params_.track_camera) return false;
-  return std::any_of(volumes_.begin(), volumes_.end(), [&](const VolumeState& v) {
-    return v.grid.tracks(params_) && tracking_scroll(v.grid, camera) != glm::ivec3(0);
-  });
+  return !tracking_scrolls(camera).empty();
 }
 
 void IrradianceField::track(glm::vec3 camera) {
   if (!params_.track_camera) return;
   tracked_camera_ = camera;
-  for (uint32_t v = 0; v < volumes_.size(); ++v) {
-    if (!volumes_[v].grid.tracks(params_)) continue;
-    const glm::ivec3 cells = tracking_scroll(volumes_[v].grid, camera);
-    if (cells != glm::ivec3(0)) move_volume(v, cells, entering_);
-  }
+  for (const auto& [volume, cells] : tracking_scrolls(camera))
+    move_volume(volume, cells, entering_);
 }
 
 void IrradianceField::add_start_passes(std::vector<vk::Pass>& passes) {

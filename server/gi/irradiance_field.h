@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/result.h"
@@ -88,6 +89,7 @@ class IrradianceField {
   // on. The entering probes start in the next update's passes (update_passes()), in the same
   // submission: no GPU work and no wait here. Does nothing to a field that does not track.
   void track(glm::vec3 camera);
+  // Whether track(camera) would scroll a volume (the tools mark such frames).
   bool tracking_would_scroll(glm::vec3 camera) const;
 
   // Brings probe states up to date with moved geometry (reclassifies probes near moved
@@ -200,6 +202,9 @@ class IrradianceField {
   // the slots of the probes that entered to `entering`; a move of the whole grid or more enters
   // them all.
   void move_volume(uint32_t volume, glm::ivec3 cells, std::vector<uint32_t>& entering);
+  // The volumes tracking `camera` would scroll, with their cells (track() and
+  // tracking_would_scroll() decide alike).
+  std::vector<std::pair<uint32_t, glm::ivec3>> tracking_scrolls(glm::vec3 camera) const;
   // The start of the probes in entering_ (maps cleared, no offset, history reset, relocated,
   // classified, states copied for the CPU), after the constants of their new place; they move
   // to unread_.

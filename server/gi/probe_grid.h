@@ -24,13 +24,6 @@ struct SquareTiling {
 };
 SquareTiling square_tiling(uint64_t tiles);
 
-struct GridPlacement {
-  glm::vec3 origin{0.0f};
-  glm::vec3 spacing{1.0f};
-  glm::ivec3 counts{1};
-  bool operator==(const GridPlacement&) const = default;
-};
-
 // The start of fitting a grid to bounds. Bounds without extent (empty, or a single point) get
 // one probe, at the world origin or on the point: `single` is then the whole fit. Otherwise
 // `extent` is the bounds' extent per axis and `used` the extent to divide into cells, where

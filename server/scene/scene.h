@@ -121,11 +121,13 @@ struct Environment {
   float rotation_y = 0.0f;  // radians about +Y applied to the lookup direction
 };
 
-// Probe grid placement from the scene or its sidecar. Absent: fitted to the bounds.
-struct ProbeGridHint {
+// Where a probe grid lies: the field's grid and static volumes (gi/field_params.h), and what a
+// scene or its sidecar asks for (probe_grid, probe_volumes). One declaration for both layers.
+struct GridPlacement {
   glm::vec3 origin{0.0f};  // position of probe (0,0,0)
   glm::vec3 spacing{1.0f};
-  glm::ivec3 counts{0};
+  glm::ivec3 counts{1};
+  bool operator==(const GridPlacement&) const = default;
 };
 // Static volumes a scene may place: an irradiance field holds 8 volumes (kMaxFieldVolumes), one
 // of them its own grid.
@@ -152,10 +154,10 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // cameras[0] is the default view when present
   Environment environment;
-  std::optional<ProbeGridHint> probe_grid;
+  std::optional<GridPlacement> probe_grid;
   // Static volumes of the irradiance field beside its grid (sidecar `probe_volumes`; the field's
   // static_volumes parameter), e.g. a finer grid in one room.
-  std::vector<ProbeGridHint> probe_volumes;
+  std::vector<GridPlacement> probe_volumes;
   std::vector<std::string> warnings;  // non-fatal findings, e.g. "no light"
 
   // World-space bounds of every instance's vertices. Exact up to 64 M instanced vertices;

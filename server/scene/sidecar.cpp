@@ -189,12 +189,12 @@ Result<MaterialOverride> read_material(const json& value, const std::string& pat
   return o;
 }
 
-Result<ProbeGridHint> read_probe_grid(const json& value, const std::string& path) {
+Result<GridPlacement> read_probe_grid(const json& value, const std::string& path) {
   DDGI_TRY(check_object(value, path, {"origin", "spacing", "counts"}));
   if (!value.contains("origin") || !value.contains("spacing") || !value.contains("counts")) {
     return invalid_argument(path + ": 'origin', 'spacing' and 'counts' are all required");
   }
-  ProbeGridHint grid;
+  GridPlacement grid;
   DDGI_ASSIGN_OR_RETURN(grid.origin, read_vector<3>(value["origin"], path + ".origin", kAny));
   DDGI_ASSIGN_OR_RETURN(grid.spacing,
                         read_vector<3>(value["spacing"], path + ".spacing", kPositive));
@@ -257,7 +257,7 @@ Result<Sidecar> parse_document(const json& root, const fs::path& file) {
     }
     for (size_t i = 0; i < volumes.size(); ++i) {
       DDGI_ASSIGN_OR_RETURN(
-          ProbeGridHint volume,
+          GridPlacement volume,
           read_probe_grid(volumes[i], "probe_volumes[" + std::to_string(i) + "]"));
       sidecar.probe_volumes.push_back(volume);
     }

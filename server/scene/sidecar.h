@@ -31,8 +31,8 @@ struct Sidecar {
   std::optional<SidecarEnvironment> environment;
   std::vector<Light> lights;
   MaterialOverrides materials;
-  std::optional<ProbeGridHint> probe_grid;
-  std::vector<ProbeGridHint> probe_volumes;
+  std::optional<GridPlacement> probe_grid;
+  std::vector<GridPlacement> probe_volumes;
 };
 
 // `file` locates relative paths and prefixes error messages; nothing is read from it.

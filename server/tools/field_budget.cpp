@@ -183,6 +183,13 @@ std::string params_text(const ParamTable<P>& table, const P& params) {
   return text;
 }
 
+// The scored size: the budget's frame scaled down to at most 320 pixels wide.
+void score_size(const CalibrationOptions& options, uint32_t& width, uint32_t& height) {
+  const double scale = std::min(1.0, 320.0 / options.width);
+  width = std::max(16u, static_cast<uint32_t>(std::lround(options.width * scale)));
+  height = std::max(16u, static_cast<uint32_t>(std::lround(options.height * scale)));
+}
+
 }  // namespace
 
 std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
@@ -224,12 +231,6 @@ Status validate(const CalibrationOptions& o) {
     return invalid_argument("calibration timed_frames must be in [1, 1000]");
   }
   return ok_status();
-}
-
-void score_size(const CalibrationOptions& options, uint32_t& width, uint32_t& height) {
-  const double scale = std::min(1.0, 320.0 / options.width);
-  width = std::max(16u, static_cast<uint32_t>(std::lround(options.width * scale)));
-  height = std::max(16u, static_cast<uint32_t>(std::lround(options.height * scale)));
 }
 
 Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Camera& camera,

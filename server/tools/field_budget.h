@@ -42,8 +42,9 @@ struct CalibrationOptions {
   // The frame the budget pays for, in pixels; [16, 16384] each. 1080p: the product's stream.
   uint32_t width = 1920;
   uint32_t height = 1080;
-  // Samples per pixel of the reference, [1, 65536]. 256: FLIP differences between candidates
-  // (0.01 and up on the H200 fronts) stay above the reference's own noise.
+  // Samples per pixel of the reference at the scored size (the frame scaled down to at most 320
+  // pixels wide: the field's light is low-frequency, and the reference costs the square less),
+  // [1, 65536]. 256: under a second on the H200 for the repo's scenes; tests pass fewer.
   uint32_t reference_spp = 256;
   // Field updates before a candidate is timed and scored, [1, 4096]: converged as a session is.
   uint32_t warmup_updates = 32;
@@ -54,10 +55,6 @@ struct CalibrationOptions {
   std::vector<double> injected_ms;
 };
 Status validate(const CalibrationOptions& options);
-
-// The scored size: the budget's frame scaled down to at most 320 pixels wide (FLIP of the field's
-// low-frequency light changes little with resolution; the reference costs the square less).
-void score_size(const CalibrationOptions& options, uint32_t& width, uint32_t& height);
 
 struct CalibratedCandidate {
   BudgetCandidate candidate;

@@ -192,7 +192,7 @@ TEST(FieldParamTable, StaticVolumesAreReadAndRefusedByVolume) {
 // A scene's probe_volumes (sidecar) are the default field's static volumes.
 TEST(FieldParams, SceneProbeVolumesAreTheDefaultStaticVolumes) {
   Scene scene;
-  scene.probe_grid = ProbeGridHint{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  scene.probe_grid = GridPlacement{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
   scene.probe_volumes = {{{1, 2, 3}, {0.5f, 0.5f, 0.5f}, {4, 5, 6}}};
   const IrradianceFieldParams p = default_field_params(scene);
   ASSERT_EQ(p.static_volumes.size(), 1u);
