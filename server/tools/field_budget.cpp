@@ -95,6 +95,7 @@ Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiSta
   IrradianceFieldParams params = base.field;
   DDGI_TRY(field_param_table().apply(params, candidate.assignments));
   DDGI_TRY(gi.field()->set_params(params));
+  gi.track(view.camera.position);  // a tracking field is placed around the view, as in a session
   DDGI_TRY(gi.warm_up(options.warmup_updates));
   CalibratedCandidate out{candidate};
   FrameSettings settings;
