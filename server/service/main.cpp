@@ -54,6 +54,8 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
                             within which each picks its field configuration of lowest
                             measured error (calibrated per scene on load); 0: none  [0]
   --budget-frame WxH        the frame a time budget pays for          [1920x1080]
+  --budget-cache DIR        keep budget calibrations in DIR too (created if missing), so a
+                            restarted server does not calibrate a scene again  [memory only]
   --device NAME             Vulkan device whose name contains NAME
   --backend B               auto | query | pipeline                  [auto]
   --validation              Vulkan validation layers (any message is logged)
@@ -123,6 +125,7 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "shutdown-grace",
                        "budget-ms",
                        "budget-frame",
+                       "budget-cache",
                        "device",
                        "backend",
                        "log-level"},
@@ -210,6 +213,7 @@ Result<ServerOptions> server_options(const Flags& flags) {
   }
   options.budget_calibration.width = static_cast<uint32_t>(width);
   options.budget_calibration.height = static_cast<uint32_t>(height);
+  DDGI_ASSIGN_OR_RETURN(options.budget_cache_dir, flags.get_string("budget-cache", ""));
   return options;
 }
 

@@ -53,6 +53,9 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.encoder = server->encoder_.get();
   server->budget_.default_ms = options.default_budget_ms;
   server->budget_.calibration = options.budget_calibration;
+  if (const Status kept = server->budget_.cache.persist_in(options.budget_cache_dir); !kept.ok()) {
+    return invalid_argument("--budget-cache: " + kept.error().message);
+  }
   env.budget = &server->budget_;
   server->sessions_ = std::make_unique<SessionRegistry>(env, options.test_session_loaded_hook);
   server->service_ = std::make_unique<RenderServiceImpl>(

@@ -40,6 +40,7 @@ struct ServerOptions {
   // --budget-ms), and how its calibration measures (the budget's frame: --budget-frame).
   double default_budget_ms = 0.0;
   tools::CalibrationOptions budget_calibration;
+  std::string budget_cache_dir;  // calibrations kept on disk too (--budget-cache); empty: none
   // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
   // health NOT_SERVING, refused new work and ended every session with the loss as their status;
   // on the thread that saw the loss, which it must not block. ddgi-server exits then, so its

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/hash.h"
 #include "core/log.h"
 #include "gi/field_params.h"
 #include "gi/param_table.h"
@@ -122,11 +123,7 @@ Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiSta
   return out;
 }
 
-uint64_t fnv1a(uint64_t hash, const void* data, size_t bytes) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
-  return hash;
-}
+using ddgi::fnv1a;  // beside the overload below, not hidden by it
 
 template <typename T>
 uint64_t fnv1a(uint64_t hash, const std::vector<T>& values) {
@@ -135,7 +132,7 @@ uint64_t fnv1a(uint64_t hash, const std::vector<T>& values) {
 
 // What decides a calibration's result in the scene: geometry, placement, materials, lights.
 uint64_t scene_hash(const Scene& scene) {
-  uint64_t hash = 14695981039346656037ull;
+  uint64_t hash = kFnv1aSeed;
   for (const Mesh& mesh : scene.meshes) {
     for (const Primitive& primitive : mesh.primitives) {
       hash = fnv1a(hash, primitive.positions);
@@ -301,23 +298,6 @@ Result<size_t> choose_within_budget(const Calibration& calibration, double budge
                 budget_ms, calibration.device.c_str(), calibration.width, calibration.height,
                 c.candidate.name.c_str(), c.cost_ms(), c.field_ms, c.frame_ms);
   return failed_precondition(text);
-}
-
-Result<Calibration> BudgetCache::get_or_measure(const std::string& key, const Measure& measure,
-                                                bool& from_cache) {
-  {
-    std::lock_guard lock(mutex_);
-    if (const auto it = entries_.find(key); it != entries_.end()) {
-      from_cache = true;
-      return it->second;
-    }
-  }
-  // Measured outside the lock: another scene's session need not wait for this one.
-  DDGI_ASSIGN_OR_RETURN(Calibration calibration, measure());
-  std::lock_guard lock(mutex_);
-  entries_[key] = calibration;
-  from_cache = false;
-  return calibration;
 }
 
 std::string calibration_key(const vk::Context& context, const Scene& scene,

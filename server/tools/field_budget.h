@@ -100,18 +100,29 @@ struct BudgetChoice {
 };
 
 // Calibrations kept per key (scene content, device, frame size, base parameters, options):
-// a scene loaded again, by any session, is not measured again. Thread-safe.
+// a scene loaded again, by any session, is not measured again. In memory, and with a directory
+// also on disk (one JSON file per key, written whole then renamed), so a restarted server does
+// not measure again either; an unreadable file is measured over and rewritten. Thread-safe.
+// Implemented in budget_cache.cpp.
 class BudgetCache {
  public:
   using Measure = std::function<Result<Calibration>()>;
+  // Keeps calibrations in `dir` too (created if missing); empty: memory only.
+  Status persist_in(const std::string& dir);
   // The cached calibration of `key`, or `measure`'s (kept when it succeeded); `from_cache` says
   // which.
   Result<Calibration> get_or_measure(const std::string& key, const Measure& measure,
                                      bool& from_cache);
+  // The file a key is kept in (under the directory given to persist_in()).
+  std::string file_of(const std::string& key) const;
 
  private:
+  std::optional<Calibration> read_file(const std::string& key) const;
+  void write_file(const std::string& key, const Calibration& calibration) const;
+
   std::mutex mutex_;
   std::map<std::string, Calibration> entries_;
+  std::string dir_;
 };
 
 // The cache key of a calibration: a hash of what decides its result.

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -161,6 +162,53 @@ TEST_F(FieldBudgetTest, ApplyBudgetSetsTheChoiceAndCachesTheCalibration) {
       tools::apply_budget(context(), scene, scene.cameras[0], third, 0.5, options, cache);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(third.field.rays_per_probe, base.field.rays_per_probe);
+}
+
+// With a directory the cache keeps calibrations on disk: a new cache (a restarted server) on
+// the same directory takes the kept one; a damaged file is measured over and rewritten; a
+// directory that cannot be made is refused by name.
+TEST_F(FieldBudgetTest, CalibrationsKeptOnDiskServeARestartedServer) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ddgi-budget-cache-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const Scene scene = make_cornell_box();
+  const GiStackOptions base = small_field(context());
+  const tools::CalibrationOptions options =
+      tiny_calibration(tools::budget_candidates(scene, base.field).size());
+  auto choose = [&](bool expect_cached) {
+    tools::BudgetCache cache;  // a server started anew
+    EXPECT_TRUE(cache.persist_in(dir.string()).ok());
+    GiStackOptions chosen = base;
+    auto choice =
+        tools::apply_budget(context(), scene, scene.cameras[0], chosen, 4.0, options, cache);
+    EXPECT_TRUE(choice.ok()) << choice.error().message;
+    if (!choice.ok()) return tools::BudgetChoice{};
+    EXPECT_EQ(choice->from_cache, expect_cached);
+    return *choice;
+  };
+  const tools::BudgetChoice first = choose(false);
+  tools::BudgetCache names;
+  ASSERT_TRUE(names.persist_in(dir.string()).ok());
+  const std::string file = names.file_of(tools::calibration_key(context(), scene, base, options));
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
+  const tools::BudgetChoice kept = choose(true);
+  EXPECT_EQ(kept.chosen.candidate.name, first.chosen.candidate.name);
+  EXPECT_EQ(kept.chosen.flip, first.chosen.flip);
+  EXPECT_EQ(kept.candidates, first.candidates);
+
+  std::ofstream(file, std::ios::trunc) << "{\"key\": ";  // damaged
+  const tools::BudgetChoice again = choose(false);
+  EXPECT_EQ(again.chosen.candidate.name, first.chosen.candidate.name);
+  choose(true);  // rewritten whole
+
+  std::ofstream(dir / "plain-file") << "x";
+  tools::BudgetCache refused;
+  const Status status = refused.persist_in((dir / "plain-file" / "cache").string());
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.error().message.find("cannot be created or is not a directory"),
+            std::string::npos)
+      << status.error().message;
+  std::filesystem::remove_all(dir);
 }
 
 // ddgi-eval --budgets end to end: the table measures the budget's candidates, then a budget
