@@ -1,8 +1,7 @@
 // The budget_ms field parameter and its report (service/session_budget.h).
 #include "service/session_budget.h"
 
-#include <cmath>
-#include <cstdlib>
+#include "core/flags.h"
 
 namespace ddgi::service {
 
@@ -16,14 +15,13 @@ Result<std::optional<double>> take_budget(std::vector<std::string>& assignments)
       continue;
     }
     const std::string text = assignment.substr(prefix.size());
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+    const Result<double> value = parse_double(text, kBudgetParam);
+    if (!value.ok()) {
       return invalid_argument(std::string(kBudgetParam) + " '" + text +
                               "' is not a number of milliseconds");
     }
-    if (value != 0.0) DDGI_TRY(tools::check_budget_ms(value));
-    budget = value;
+    if (*value != 0.0) DDGI_TRY(tools::check_budget_ms(*value));
+    budget = *value;
   }
   assignments = std::move(rest);
   return budget;

@@ -45,6 +45,7 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
       fitted_gi_options(scene, options.gi, options.direct_mode, options.field_assignments,
                         options.shadow_assignments, context.default_backend()));
   std::unique_ptr<SessionScene> loaded(new SessionScene());
+  loaded->default_camera_ = ::ddgi::default_camera(scene);
   const double budget_ms = options.budget_ms.value_or(budget.default_ms);
   if (budget_ms > 0.0 && !options.gi && options.budget_ms) {
     return failed_precondition(
@@ -52,10 +53,9 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
   }
   if (budget_ms > 0.0 && options.gi) {  // the server's default skips sessions without a field
     loaded->budget_base_ = gi_options.field;
-    DDGI_ASSIGN_OR_RETURN(
-        loaded->budget_,
-        tools::apply_budget(context, scene, ::ddgi::default_camera(scene), gi_options, budget_ms,
-                            budget.calibration, budget.cache));
+    DDGI_ASSIGN_OR_RETURN(loaded->budget_,
+                          tools::apply_budget(context, scene, loaded->default_camera_, gi_options,
+                                              budget_ms, budget.calibration, budget.cache));
     log_budget(*loaded->budget_, session_id, request.label);
   }
   DDGI_ASSIGN_OR_RETURN(loaded->gi_, GiStack::create(context, scene, gi_options));
@@ -64,7 +64,6 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
   loaded->context_ = &context;
   loaded->label_ = request.label;
   loaded->warnings_ = scene.warnings;
-  loaded->default_camera_ = ::ddgi::default_camera(scene);
   loaded->lights_ = LightSet(loaded->gpu_scene().scene().lights);
   IrradianceField* field = loaded->field();
   LOG_INFO << "scene loaded session=" << session_id << " scene=" << request.label

@@ -123,11 +123,8 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   // configuration on the CPU left the GPU idle for seconds and its clocks low (the H200 timed a
   // scene's first configuration at 0.8 ms per frame and the next ones at 4-6 ms without this).
   settings.read_radiance = false;
-  const auto warm_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
   settings.view = View::kFull;
-  while (std::chrono::steady_clock::now() < warm_until) {
-    DDGI_TRY(renderer->render(settings));  // no field update: the field stays as warmed up
-  }
+  DDGI_TRY(tools::render_for(*renderer, settings, std::chrono::milliseconds(500)));
   tools::PassTable table;
   FrameResult full;
   for (int64_t f = 0; f < job.frames; ++f) {

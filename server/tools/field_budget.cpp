@@ -12,33 +12,29 @@
 #include "gi/field_params.h"
 #include "gi/param_table.h"
 #include "gi/shadow_params.h"
-#include "render/path_tracer.h"
 #include "render/renderer.h"
 #include "tools/eval_job.h"
+#include "tools/reference_render.h"
 #include "tools/tool_support.h"
 
 namespace ddgi::tools {
 namespace {
 
-std::string vec_text(glm::vec3 v) {
-  std::ostringstream out;
-  out << v.x << "," << v.y << "," << v.z;
-  return out.str();
-}
-
-// Half the probes per axis over the same extent (at least two where there were two or more).
+// Half the probes per axis over the same extent (at least two where there were two or more),
+// as assignments written by the parameter table itself (text it reads back exactly).
 std::vector<std::string> coarse_grid(const IrradianceFieldParams& base) {
-  glm::ivec3 counts = base.counts;
-  glm::vec3 spacing = base.spacing;
+  IrradianceFieldParams coarse = base;
   for (int axis = 0; axis < 3; ++axis) {
     const int n = base.counts[axis];
     if (n < 3) continue;
-    counts[axis] = (n + 1) / 2;
-    spacing[axis] = base.spacing[axis] * float(n - 1) / float(counts[axis] - 1);
+    coarse.counts[axis] = (n + 1) / 2;
+    coarse.spacing[axis] = base.spacing[axis] * float(n - 1) / float(coarse.counts[axis] - 1);
   }
-  return {"counts=" + std::to_string(counts.x) + "," + std::to_string(counts.y) + "," +
-              std::to_string(counts.z),
-          "spacing=" + vec_text(spacing)};
+  std::vector<std::string> assignments;
+  for (const char* name : {"counts", "spacing"}) {
+    assignments.push_back(std::string(name) + "=" + field_param_table().get(coarse, name).value());
+  }
+  return assignments;
 }
 
 bool coarser_grid_exists(const IrradianceFieldParams& base) {
@@ -46,36 +42,12 @@ bool coarser_grid_exists(const IrradianceFieldParams& base) {
          glm::any(glm::greaterThanEqual(base.counts, glm::ivec3(3)));
 }
 
-// The path-traced full image of the calibration's view, tone-mapped with its own exposure.
-struct Reference {
-  PathTraceImage image;
-  float exposure = 1.0f;
-};
-
-Result<Reference> path_traced_reference(vk::Context& context, GpuScene& scene,
-                                        const PathTraceSettings& settings, uint32_t spp) {
-  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, scene, context.default_backend()));
-  for (uint32_t done = 0; done < spp;) {
-    const uint32_t batch = std::min(64u, spp - done);
-    DDGI_TRY(tracer->accumulate(settings, batch));
-    done += batch;
-  }
-  Reference reference;
-  DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
-  reference.exposure = auto_exposure(linear.radiance);
-  DDGI_ASSIGN_OR_RETURN(reference.image, tracer->read(Tonemap::kAces, reference.exposure));
-  return reference;
-}
-
 // The medians of `frames` timed frames of the budget's size, one field update each, after
 // untimed ones for a tenth of a second (clocks up after the CPU-side scoring before).
 Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings, uint32_t frames,
                    CalibratedCandidate& out) {
   settings.read_radiance = false;
-  const auto warm_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
-  do {
-    DDGI_TRY(renderer.render(settings));
-  } while (std::chrono::steady_clock::now() < warm_until);
+  DDGI_TRY(render_for(renderer, settings, std::chrono::milliseconds(100)));
   PassTable table;
   for (uint32_t f = 0; f < frames; ++f) {
     DDGI_ASSIGN_OR_RETURN(const auto update, gi.frame_update(settings.direct_mode, {}));
@@ -91,8 +63,9 @@ Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings, uint
 // of the scored size compared with the reference.
 Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiStackOptions& base,
                                     const BudgetCandidate& candidate, size_t index,
-                                    const Reference& reference, const PathTraceSettings& view,
+                                    const ReferencePair& reference,
                                     const CalibrationOptions& options) {
+  const PathTraceSettings& view = reference.settings;
   IrradianceFieldParams params = base.field;
   DDGI_TRY(field_param_table().apply(params, candidate.assignments));
   DDGI_TRY(gi.field()->set_params(params));
@@ -116,7 +89,7 @@ Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiSta
   settings.read_radiance = true;
   DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings));
   DDGI_ASSIGN_OR_RETURN(const ImageScores scores,
-                        score(reference.image.ldr, reference.image.radiance, frame.ldr,
+                        score(reference.full.ldr, reference.full.radiance, frame.ldr,
                               frame.radiance, view.width, view.height));
   out.flip = scores.flip;
   out.mean_ratio = scores.mean_ratio;
@@ -246,19 +219,21 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
   DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, base));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         base.backend, gi->shadow_field()));
-  PathTraceSettings view;
-  score_size(options, view.width, view.height);
-  view.camera = camera;
-  view.jitter = false;  // frames trace pixel centres too
-  DDGI_ASSIGN_OR_RETURN(const Reference reference,
-                        path_traced_reference(context, gi->scene(), view, options.reference_spp));
+  ReferencePairOptions scored;  // the full image alone, at the scored size
+  score_size(options, scored.width, scored.height);
+  scored.camera = camera;
+  scored.full_spp = options.reference_spp;
+  scored.second_spp = 0;
+  scored.exposure = auto_exposure;
+  DDGI_ASSIGN_OR_RETURN(const ReferencePair reference,
+                        reference_pair(context, gi->scene(), scored));
   Calibration calibration;
   calibration.device = context.caps().device_name;
   calibration.width = options.width;
   calibration.height = options.height;
   for (size_t i = 0; i < candidates.size(); ++i) {
-    DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point, measure(*gi, *renderer, base, candidates[i], i,
-                                                             reference, view, options));
+    DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point,
+                          measure(*gi, *renderer, base, candidates[i], i, reference, options));
     LOG_INFO << "budget calibration " << i + 1 << "/" << candidates.size() << " '"
              << point.candidate.name << "': " << point.cost_ms() << " ms (field " << point.field_ms
              << " + frame " << point.frame_ms << "), FLIP " << point.flip;

@@ -81,7 +81,7 @@ Status render_reference(vk::Context& context, GpuScene& scene, vk::TraceBackend 
   return ok_status();
 }
 
-Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
+Result<ReferencePair> reference_pair(vk::Context& context, GpuScene& scene,
                                      const ReferencePairOptions& options) {
   ReferencePair pair;
   PathTraceSettings& pt = pair.settings;
@@ -89,9 +89,7 @@ Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
   pt.height = options.height;
   pt.camera = options.camera;
   pt.jitter = false;  // frames trace pixel centres too
-  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
-  DDGI_ASSIGN_OR_RETURN(auto tracer,
-                        PathTracer::create(context, *gpu_scene, context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, scene, context.default_backend()));
   auto accumulate = [&](PathTraceView view, uint32_t spp) -> Status {
     PathTraceSettings settings = pt;
     settings.view = view;
@@ -107,9 +105,16 @@ Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
   pair.exposure = options.exposure ? options.exposure(linear.radiance) : 1.0f;
   DDGI_ASSIGN_OR_RETURN(pair.full, tracer->read(Tonemap::kAces, pair.exposure));
+  if (options.second_spp == 0) return pair;
   DDGI_TRY(accumulate(options.second_view, options.second_spp));
   DDGI_ASSIGN_OR_RETURN(pair.second, tracer->read(Tonemap::kAces, pair.exposure));
   return pair;
+}
+
+Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
+                                     const ReferencePairOptions& options) {
+  DDGI_ASSIGN_OR_RETURN(auto gpu_scene, GpuScene::create(context, scene));
+  return reference_pair(context, *gpu_scene, options);
 }
 
 }  // namespace ddgi

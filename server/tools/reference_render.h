@@ -43,10 +43,13 @@ struct ReferencePairOptions {
   Camera camera;
   uint32_t full_spp = 1024;
   PathTraceView second_view = PathTraceView::kFieldIndirect;
-  uint32_t second_spp = 1024;
+  uint32_t second_spp = 1024;  // 0: no second view (ReferencePair::second stays empty)
   float (*exposure)(const std::vector<float>& radiance) = nullptr;  // from the full image
 };
 Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
+                                     const ReferencePairOptions& options);
+// The same over a scene already on the GPU.
+Result<ReferencePair> reference_pair(vk::Context& context, GpuScene& scene,
                                      const ReferencePairOptions& options);
 
 }  // namespace ddgi

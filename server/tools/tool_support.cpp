@@ -31,6 +31,15 @@ Result<Scene> load_scene_logged(const std::string& path) {
   return scene;
 }
 
+Status render_for(Renderer& renderer, const FrameSettings& settings,
+                  std::chrono::milliseconds duration) {
+  const auto until = std::chrono::steady_clock::now() + duration;
+  do {
+    DDGI_TRY(renderer.render(settings));
+  } while (std::chrono::steady_clock::now() < until);
+  return ok_status();
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());

@@ -1,14 +1,16 @@
 // What every command-line tool (ddgi-render, ddgi-bench, ddgi-eval, ddgi-shadow-eval) does the
 // same way: the exit status of a run, the Vulkan context from the common flags, medians of
-// timings, and per-group totals of a frame's pass times.
+// timings, per-group totals of a frame's pass times, and untimed frames before timing.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/flags.h"
 #include "core/result.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 #include "vk/timer.h"
@@ -27,6 +29,11 @@ Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags);
 Result<Scene> load_scene_logged(const std::string& path);
 
 double median(std::vector<double> values);
+
+// Frames of `settings` without field updates (the field stays as it is) for `duration`, at
+// least one: the GPU's clocks up again before timing, after CPU work left it idle.
+Status render_for(Renderer& renderer, const FrameSettings& settings,
+                  std::chrono::milliseconds duration);
 
 // "dir/living_room.ddgi.json" -> "living_room": names of files written per scene.
 std::string file_stem(const std::string& path);
