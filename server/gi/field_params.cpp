@@ -143,6 +143,12 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
           // Its limit depends on rays_per_probe: validate() states it.
           param::number("max_rays_per_update", &P::max_rays_per_update,
                         "probe rays per update, 0: no cap, else >= one probe's rays"),
+          param::number("settle_threshold", &P::settle_threshold, 0.0f, 1.0f,
+                        "adaptive rays: mean texel change below which a probe settles (0: off)"),
+          param::number("hot_updates", &P::hot_updates, 1, 255,
+                        "adaptive rays: updates a changing probe stays traced"),
+          param::number("maintenance_rate", &P::maintenance_rate, 0.001f, 1.0f,
+                        "adaptive rays: fraction of settled probes traced per update"),
           param::number("emitter_samples", &P::emitter_samples, 0, 64,
                         "emitter samples per pixel and probe-ray hit (0: emitters via the field)"),
           param::choice("probe_direct", &P::probe_direct, "frame",
@@ -249,6 +255,11 @@ Status validate(const IrradianceFieldParams& p) {
                             std::to_string(p.rays_per_probe) + " rays (got " +
                             std::to_string(p.max_rays_per_update) + ")");
   }
+  if (p.settle_threshold > 0.0f && p.basis != ProbeBasis::kOctahedral) {
+    return invalid_argument(
+        "settle_threshold > 0 (adaptive rays) needs basis=octahedral: an SH probe's change is "
+        "not measured yet; set settle_threshold=0");
+  }
   const AtlasLayout layout = atlas_layout(p);
   const glm::uvec2 largest = glm::max(layout.irradiance_size, layout.distance_size);
   if (largest.x > gpu::kMaxAtlasDimension || largest.y > gpu::kMaxAtlasDimension) {
@@ -318,10 +329,13 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
   // One tile of each map for SH fields, one ShProbe for octahedral ones (atlas_layout()).
   const uint64_t maps =
       sh ? probes * sizeof(gpu::ShProbe) + probe_maps : probes * probe_maps + sizeof(gpu::ShProbe);
-  // Per probe: its state and the state's host-visible copy for scrolls, and two probe-list
-  // entries (the active list, the probes a scroll starts); one zero tile to clear maps from.
-  return maps + probes * (2 * sizeof(gpu::ProbeState) + 2 * sizeof(uint32_t)) +
-         largest_map_tile_bytes(p) + rays * sizeof(gpu::ProbeRay) + sizeof(gpu::FieldConstants);
+  // Per probe: its state and the state's host-visible copy for scrolls, two probe-list entries
+  // (the active list, the probes a scroll starts) and its drift (adaptive rays, after a 16-byte
+  // header); one zero tile to clear maps from.
+  return maps +
+         probes * (2 * sizeof(gpu::ProbeState) + 2 * sizeof(uint32_t) + sizeof(gpu::ProbeDrift)) +
+         sizeof(glm::vec4) + largest_map_tile_bytes(p) + rays * sizeof(gpu::ProbeRay) +
+         sizeof(gpu::FieldConstants);
 }
 
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& p) {

@@ -96,7 +96,8 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
                  {gpu::kFieldUpdateBindingIrradianceOut, storage},
                  {gpu::kFieldUpdateBindingDistanceOut, storage},
                  {gpu::kFieldUpdateBindingProbeList},
-                 {gpu::kFieldUpdateBindingSurfels}};
+                 {gpu::kFieldUpdateBindingSurfels},
+                 {gpu::kFieldUpdateBindingDrift}};
   desc.query = {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}};
   desc.query_kernel = "field_query";
   desc.push_constant_bytes = sizeof(gpu::FieldDispatch);
@@ -128,6 +129,11 @@ Status IrradianceField::create_path_kernels(bool wanted) {
 }
 
 Status IrradianceField::check_path_fits(const IrradianceFieldParams& params, FieldUpdatePath path) {
+  if (params.settle_threshold > 0.0f && path == FieldUpdatePath::kSplit) {
+    return failed_precondition(
+        "settle_threshold > 0 (adaptive rays) measures each probe's change in the fused blend "
+        "only; the split update path (a benchmark reference) traces every probe");
+  }
   if (params.probe_bounces > 0 && path == FieldUpdatePath::kSplit) {
     return failed_precondition(
         "probe_bounces > 0 traces paths in the fused update only; the split update path (a "
@@ -194,6 +200,9 @@ Status IrradianceField::create_resources() {
   const uint64_t sh_probes = params_.basis == ProbeBasis::kSh ? probes : 1;
   DDGI_ASSIGN_OR_RETURN(sh_, vk::Buffer::create(context_, sh_probes * sizeof(gpu::ShProbe), storage,
                                                 vk::MemoryUsage::kDeviceLocal, "SH probes"));
+  DDGI_ASSIGN_OR_RETURN(
+      drift_, vk::Buffer::create(context_, sizeof(glm::vec4) + probes * sizeof(gpu::ProbeDrift),
+                                 storage, vk::MemoryUsage::kDeviceLocal, "probe drift"));
   // Two halves: the active probes the updates take, and the probes a scroll starts.
   DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, 2 * probes * sizeof(uint32_t),
                                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
@@ -234,6 +243,7 @@ Status IrradianceField::create_resources() {
       .storage_image(gpu::kFieldUpdateBindingIrradianceOut, irradiance_)
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
       .buffer(gpu::kFieldUpdateBindingProbeList, probe_list_)
+      .buffer(gpu::kFieldUpdateBindingDrift, drift_)
       .apply(context_.device());
   if (update_path_ == FieldUpdatePath::kSplit) DDGI_TRY(create_surfels());
   return reset();
@@ -276,6 +286,9 @@ Status IrradianceField::reset() {
       {reinterpret_cast<const uint8_t*>(states.data()), states.size() * sizeof(states[0])}));
   scheduler_ = ProbeScheduler(probes);
   seen_moves_ = scene_.move_count();
+  seen_revision_ = scene_.revision();
+  sweep_left_ = params_.hot_updates;
+  maintenance_cursor_ = 0;
   const Constants c = constants(DirectMode::kTracedShadows);
   DDGI_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
     vkCmdUpdateBuffer(cmd, constants_.handle(), 0, sizeof(c), c.data());
@@ -287,6 +300,7 @@ Status IrradianceField::reset() {
       vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
     }
     vkCmdFillBuffer(cmd, sh_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, drift_.handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, zero_tile_.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier_all(cmd);
   }));
@@ -313,7 +327,7 @@ vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel
                                 work.per_probe,
                                 work.first_ray,
                                 work.mode,
-                                0};
+                                work.skip_settled};
   vk::Pass pass;
   pass.name = name;
   pass.group = vk::PassGroup::kIrradianceField;
@@ -328,8 +342,8 @@ vk::Pass IrradianceField::linear_pass(const char* name, const vk::Kernel& kernel
 vk::Pass IrradianceField::probe_workgroup_pass(const char* name, const vk::Kernel& kernel,
                                                const LinearWork& work) const {
   const uint32_t row = std::min(work.probes, kProbeWorkgroupRow);
-  const gpu::FieldDispatch push{
-      work.probes, row, work.list_start, std::max(work.list_size, 1u), 1, 0, 0, 0};
+  const gpu::FieldDispatch push{work.probes, row, work.list_start,  std::max(work.list_size, 1u), 1,
+                                0,           0,   work.skip_settled};
   vk::Pass pass;
   pass.name = name;
   pass.group = vk::PassGroup::kIrradianceField;
@@ -447,6 +461,13 @@ bool IrradianceField::scrolled() const {
 
 Status IrradianceField::prepare() {
   collect_scroll_verdicts();
+  // Adaptive rays: any change of the scene (lights, objects, environment) may change any
+  // probe's light; the next hot_updates updates trace them all, and their drifts decide which
+  // stay hot.
+  if (scene_.revision() != seen_revision_) {
+    seen_revision_ = scene_.revision();
+    sweep_left_ = params_.hot_updates;
+  }
   if (scene_.move_count() == seen_moves_) return ok_status();
   bool everything = false;
   std::vector<Bounds> regions = scene_.moved_regions(seen_moves_, &everything);
@@ -514,6 +535,8 @@ Status IrradianceField::set_params(const IrradianceFieldParams& params) {
       old.cascade_spacing_ratio != params.cascade_spacing_ratio) {
     return reset();  // the volumes are placed anew
   }
+  // Drifts were not kept while adaptive rays were off: every probe is measured anew.
+  if (old.settle_threshold != params.settle_threshold) sweep_left_ = params_.hot_updates;
   return ok_status();
 }
 
@@ -550,6 +573,10 @@ IrradianceField::Constants IrradianceField::constants(DirectMode direct_mode) co
   c.sh_band1 = bands[1];
   c.sh_band2 = bands[2];
   c.probe_bounces = params_.probe_bounces;
+  c.settle_threshold = params_.settle_threshold;
+  c.hot_updates = params_.hot_updates;
+  c.maintenance_start = maintenance_.start;
+  c.maintenance_count = maintenance_.count;
   c.volume_count = static_cast<uint32_t>(volumes_.size());
   // What differs between volumes: the grid and what scales with its spacing.
   for (size_t v = 0; v < volumes_.size(); ++v) {
@@ -603,15 +630,15 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
     (void)write_probe_list(scheduler_.active());
     probe_list_is_active_ = true;
   }
-  const uint32_t budget_probes =
-      params_.max_rays_per_update == 0
-          ? 0
-          : static_cast<uint32_t>(
-                std::max<uint64_t>(1, params_.max_rays_per_update / params_.rays_per_probe));
-  const ProbeScheduler::Window window = scheduler_.next_window(budget_probes);
+  const ProbeScheduler::Window window = scheduler_.next_window(budget_probes());
   last_update_traced_lights_ = traced_lights(direct_mode);
-  last_update_rays_ = {window.start,      probe_list_size_, window.count, params_.rays_per_probe, 0,
-                       params_.fixed_rays};
+  const bool adaptive = params_.settle_threshold > 0.0f;
+  last_update_rays_ = {
+      window.start,       probe_list_size_,  window.count, params_.rays_per_probe, 0,
+      params_.fixed_rays, adaptive ? 1u : 0u};
+  maintenance_ = adaptive ? next_maintenance_slice(probe_list_size_) : Slice{};
+  maintenance_cursor_ += maintenance_.count;
+  if (sweep_left_ > 0) --sweep_left_;
 
   std::vector<vk::Pass> passes = {vk::upload_pass(
       "field constants", vk::PassGroup::kIrradianceField, constants_, constants(direct_mode))};
@@ -619,6 +646,35 @@ std::vector<vk::Pass> IrradianceField::update_passes(DirectMode frame_mode) {
   add_lighting_passes(passes, last_update_rays_, direct_mode);
   ++update_index_;
   return passes;
+}
+
+IrradianceField::Slice IrradianceField::next_maintenance_slice(uint32_t list_size) const {
+  const uint32_t list = std::max(list_size, 1u);
+  const uint32_t count =
+      sweep_left_ > 0
+          ? list
+          : std::clamp(static_cast<uint32_t>(std::ceil(params_.maintenance_rate * list)), 1u, list);
+  return {maintenance_cursor_ % list, count};
+}
+
+Result<std::vector<uint8_t>> IrradianceField::probes_lit_by_next_update() {
+  DDGI_TRY(prepare());
+  const std::vector<uint32_t>& active = scheduler_.active();
+  ProbeScheduler preview = scheduler_;  // the window without advancing the real scheduler
+  const ProbeScheduler::Window window = preview.next_window(budget_probes());
+  DDGI_ASSIGN_OR_RETURN(std::vector<gpu::ProbeState> states, read_probe_slots());
+  const uint32_t list = static_cast<uint32_t>(active.size());
+  const bool adaptive = params_.settle_threshold > 0.0f;
+  const Slice slice = next_maintenance_slice(list);
+  std::vector<uint8_t> lit(states.size(), 0);
+  for (uint32_t i = 0; i < window.count; ++i) {
+    const uint32_t index = (window.start + i) % list;
+    const bool in_slice = (index + list - slice.start) % list < slice.count;
+    const uint32_t flags = states[active[index]].flags;
+    const bool hot = (flags & (gpu::kProbeResetHistory | gpu::kProbeHeatMask)) != 0;
+    lit[active[index]] = !adaptive || in_slice || hot ? 1 : 0;
+  }
+  return in_grid_order(std::move(lit));
 }
 
 void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
@@ -645,7 +701,8 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
       return;
     }
     passes.push_back(with_access(probe_workgroup_pass("field blend", blend_, rays),
-                                 {&rays_, &probes_}, {&irradiance_, &distance_, &probes_}));
+                                 {&rays_, &probes_, &drift_},
+                                 {&irradiance_, &distance_, &probes_, &drift_}));
     return;
   }
   const uint32_t ti = params_.irradiance_texels, td = params_.distance_texels;

@@ -121,6 +121,11 @@ class IrradianceField {
   // which the next update writes before reading. Its kernel is built on the first call: only
   // the benchmark asks.
   Result<std::vector<vk::Pass>> raw_trace_passes();
+  // The probes the next update will trace, 1 per probe in grid order (the rest 0): the next
+  // window's probes, and with adaptive rays (settle_threshold > 0) of those the hot ones, those
+  // without history and the maintenance slice, from the probe states on the GPU (waits for the
+  // GPU: tools and tests).
+  Result<std::vector<uint8_t>> probes_lit_by_next_update();
   // Runs `count` updates, each its own submission; returns the pass times of the last.
   Result<std::vector<vk::PassTime>> update(uint32_t count, DirectMode direct_mode);
   // Converges a new field quickly: three quarters of `count` updates at hysteresis <= 0.5, so
@@ -222,8 +227,9 @@ class IrradianceField {
     uint32_t list_size = 0;
     uint32_t probes = 0;
     uint32_t per_probe = 0;
-    uint32_t mode = 0;       // kProbeMode* of the probe-management kernel
-    uint32_t first_ray = 0;  // of the tracing kernels
+    uint32_t mode = 0;          // kProbeMode* of the probe-management kernel
+    uint32_t first_ray = 0;     // of the tracing kernels
+    uint32_t skip_settled = 0;  // FieldDispatch::skip_settled (an adaptive update's lighting)
   };
   // `shadow_set`: bound as set 3 when not null (the lighting kernels' shadow-field variants).
   vk::Pass linear_pass(const char* name, const vk::Kernel& kernel, const LinearWork& work,
@@ -292,12 +298,32 @@ class IrradianceField {
   uint32_t probe_list_size_ = 0;
   bool probe_list_is_active_ = false;  // else it holds probes being managed
   ProbeScheduler scheduler_;
-  uint64_t seen_moves_ = 0;      // GpuScene::move_count() already handled
+  uint64_t seen_moves_ = 0;  // GpuScene::move_count() already handled
+  // Adaptive rays: the scene revision the probes last saw (a change traces every probe for
+  // hot_updates updates: `sweep_left_`, so that every probe's drift sees it), and where the
+  // next maintenance slice starts in the active list.
+  uint64_t seen_revision_ = 0;
+  uint32_t sweep_left_ = 0;
+  uint32_t maintenance_cursor_ = 0;
+  struct Slice {
+    uint32_t start = 0;
+    uint32_t count = 0;
+  };
+  Slice maintenance_ = {};  // of the update being built (constants())
+  // Probes one update may trace under max_rays_per_update (0: all).
+  uint32_t budget_probes() const {
+    if (params_.max_rays_per_update == 0) return 0;
+    return static_cast<uint32_t>(
+        std::max<uint64_t>(1, params_.max_rays_per_update / params_.rays_per_probe));
+  }
+  // The maintenance slice of the next update over an active list of `list_size` probes.
+  Slice next_maintenance_slice(uint32_t list_size) const;
   LinearWork last_update_rays_;  // the blended rays of the last update (raw_trace_passes)
   uint32_t last_update_traced_lights_ = 0;
   vk::Image irradiance_;
   vk::Image distance_;
   vk::Buffer sh_;         // ShProbe per probe of an SH field, one otherwise
+  vk::Buffer drift_;      // header + ProbeDrift per probe (adaptive rays)
   vk::Buffer zero_tile_;  // zeros the size of a map tile: what a scroll copies to clear maps
   // Scrolls (field_scroll.cpp): probes that entered and are not started yet; probes started
   // whose states the scheduler has not taken yet, copied to `scroll_states_` (host-visible)

@@ -85,11 +85,14 @@ double relative_l1(const std::vector<float>& test, const std::vector<float>& ref
 }
 
 int64_t ResponseCurve::frames_until_within(double target, double factor, size_t window) const {
-  window = std::clamp<size_t>(window, 1, std::max<size_t>(error.size(), 1));
+  const int64_t after = int64_t(error.size()) - change_frame;
+  window = std::clamp<size_t>(window, 1, size_t(std::max<int64_t>(after, 1)));
   int64_t first = -1;
-  for (int64_t f = int64_t(error.size()) - int64_t(window); f >= 0; --f) {
+  for (int64_t f = after - int64_t(window); f >= 0; --f) {
     double mean = 0.0;
-    for (size_t i = 0; i < window; ++i) mean += error[size_t(f) + i] / double(window);
+    for (size_t i = 0; i < window; ++i) {
+      mean += error[size_t(change_frame + f) + i] / double(window);
+    }
     if (mean > factor * target) break;
     first = f;
   }
@@ -98,39 +101,69 @@ int64_t ResponseCurve::frames_until_within(double target, double factor, size_t 
 
 double ResponseCurve::ms_until(int64_t frames) const {
   double sum = 0.0;
-  for (int64_t f = 0; f < std::min<int64_t>(frames, int64_t(ms.size())); ++f) sum += ms[size_t(f)];
+  const int64_t end = std::min<int64_t>(change_frame + frames, int64_t(ms.size()));
+  for (int64_t f = change_frame; f < end; ++f) sum += ms[size_t(f)];
   return sum;
 }
 
-Status write_response_files(const std::string& dir, const std::string& stem,
-                            const std::vector<ResponseCurve>& curves) {
+namespace {
+
+// One series per curve that has `values` (frame counted from the change on x).
+ScatterPlot per_frame_plot(const std::vector<ResponseCurve>& curves,
+                           std::vector<double> ResponseCurve::*values) {
   ScatterPlot plot;
-  plot.title = stem + ": error per frame after the change";
   plot.x_label = "frames after the change";
-  plot.y_label = "relative L1 error against the reference";
   plot.log_x = false;
-  std::ostringstream csv;
-  csv << "frame";
-  size_t frames = 0;
   for (const ResponseCurve& curve : curves) {
-    csv << "," << csv_field(curve.name);
-    frames = std::max(frames, curve.error.size());
+    if ((curve.*values).empty()) continue;
     PlotSeries series{curve.name, {}};
-    for (size_t f = 0; f < curve.error.size(); ++f) {
-      series.points.push_back({double(f), curve.error[f], ""});
+    for (size_t f = 0; f < (curve.*values).size(); ++f) {
+      series.points.push_back({double(int64_t(f) - curve.change_frame), (curve.*values)[f], ""});
     }
     plot.series.push_back(std::move(series));
   }
+  return plot;
+}
+
+}  // namespace
+
+Status write_response_files(const std::string& dir, const std::string& stem,
+                            const std::vector<ResponseCurve>& curves) {
+  ScatterPlot errors = per_frame_plot(curves, &ResponseCurve::error);
+  errors.title = stem + ": error per frame, the change at frame 0";
+  errors.y_label = "relative L1 error against the reference";
+  DDGI_TRY(write_text_file(dir + "/" + stem + ".response.svg", scatter_plot_svg(errors)));
+  ScatterPlot rays = per_frame_plot(curves, &ResponseCurve::rays);
+  rays.title = stem + ": probe rays traced per frame, the change at frame 0";
+  rays.y_label = "probe rays per field update";
+  if (!rays.series.empty()) {
+    DDGI_TRY(write_text_file(dir + "/" + stem + ".rays.svg", scatter_plot_svg(rays)));
+  }
+
+  // Rows from the earliest frame before the change to the last after it.
+  int64_t before = 0, after = 0;
+  std::ostringstream csv;
+  csv << "frame";
+  for (const ResponseCurve& curve : curves) {
+    csv << "," << csv_field(curve.name);
+    if (!curve.rays.empty()) csv << "," << csv_field(curve.name + " rays");
+    before = std::max(before, curve.change_frame);
+    after = std::max(after, int64_t(curve.error.size()) - curve.change_frame);
+  }
   csv << "\n";
-  for (size_t f = 0; f < frames; ++f) {
+  for (int64_t f = -before; f < after; ++f) {
     csv << f;
     for (const ResponseCurve& curve : curves) {
+      const int64_t i = f + curve.change_frame;
+      const bool has = i >= 0 && i < int64_t(curve.error.size());
       csv << ",";
-      if (f < curve.error.size()) csv << curve.error[f];
+      if (has) csv << curve.error[size_t(i)];
+      if (curve.rays.empty()) continue;
+      csv << ",";
+      if (has && size_t(i) < curve.rays.size()) csv << curve.rays[size_t(i)];
     }
     csv << "\n";
   }
-  DDGI_TRY(write_text_file(dir + "/" + stem + ".response.svg", scatter_plot_svg(plot)));
   return write_text_file(dir + "/" + stem + ".response.csv", csv.str());
 }
 

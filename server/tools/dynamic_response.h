@@ -36,23 +36,27 @@ Scene changed_scene(const Scene& scene, const SceneChange& change);
 // Mean absolute difference of linear RGB over the reference's mean (RGBA inputs): 0 is exact.
 double relative_l1(const std::vector<float>& test, const std::vector<float>& reference);
 
-// One method's frames after the change.
+// One method's frames: `change_frame` frames of the scene as loaded (scored against its own
+// reference), then the frames after the change.
 struct ResponseCurve {
   std::string name;
-  std::vector<double> error;  // per frame after the change (relative L1)
+  std::vector<double> error;  // per frame (relative L1)
   std::vector<double> ms;     // GPU ms per frame (field update + frame, or the path tracer's)
+  std::vector<double> rays;   // probe rays the frame's field update traced (fields only)
+  int64_t change_frame = 0;   // the first frame after the change
   // Where the method settles: for a field, the median error of the same configuration (on the
   // same grid) warmed up on the changed scene from the start; 0 for the path tracer.
   double steady = 0.0;
-  // The first frame from which the mean error of every later window of `window` frames is
-  // within `factor` x `target` (windows smooth the field's frame-to-frame noise); -1: never.
+  // The first frame after the change (counted from it) from which the mean error of every
+  // later window of `window` frames is within `factor` x `target` (windows smooth the field's
+  // frame-to-frame noise); -1: never.
   int64_t frames_until_within(double target, double factor = 1.1, size_t window = 10) const;
-  // GPU ms summed over the frames before `frames` (the time to get there).
+  // GPU ms summed over the first `frames` frames after the change (the time to get there).
   double ms_until(int64_t frames) const;
 };
 
-// The curves as an SVG (error per frame, log error axis) and a CSV (frame, then one error
-// column per curve).
+// The curves as SVGs (error per frame; where fields counted them, probe rays per frame) and a
+// CSV (frame counted from the change, then per curve its error and, where counted, its rays).
 Status write_response_files(const std::string& dir, const std::string& stem,
                             const std::vector<ResponseCurve>& curves);
 

@@ -132,6 +132,7 @@ Result<EvalJob> parse_job(const Flags& flags) {
   job.field_assignments = flags.get_all("field");
   DDGI_ASSIGN_OR_RETURN(job.dynamic, flags.get_string("dynamic", ""));
   DDGI_ASSIGN_OR_RETURN(job.response_frames, flags.get_int("response-frames", 120, 5, 100000));
+  DDGI_ASSIGN_OR_RETURN(job.response_static, flags.get_int("response-static", 0, 0, 100000));
   DDGI_ASSIGN_OR_RETURN(job.camera_path, flags.get_string("path", ""));
   DDGI_ASSIGN_OR_RETURN(job.path_rate, flags.get_double("path-rate", 30.0, 1.0, 1000.0));
   DDGI_ASSIGN_OR_RETURN(job.path_every, flags.get_double("path-every", 10.0, 0.01, 1e6));

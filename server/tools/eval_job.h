@@ -41,6 +41,7 @@ struct EvalJob {
   uint32_t pt_max_spp = 64;
   std::string dynamic;  // empty: no --dynamic
   int64_t response_frames = 120;
+  int64_t response_static = 0;  // --dynamic: frames before the change
   std::string camera_path;      // empty: no --path
   double path_rate = 30.0;      // field updates (and frames) per second of the path
   double path_every = 10.0;     // seconds of the path between scored frames

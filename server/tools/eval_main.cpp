@@ -79,7 +79,10 @@ readbacks not included).
                         steady error (the configuration warmed up on the changed scene), the
                         frames and GPU ms until the error stays within 10% of it (the path
                         tracer: of the best configuration's), judged on 10-frame means; writes
-                        DIR/SCENE.response.svg and .csv with --pareto DIR
+                        DIR/SCENE.response.svg and .csv with --pareto DIR, and
+                        DIR/SCENE.rays.svg: the probe rays each frame's update traced
+  --response-static N   --dynamic: N frames of the scene as loaded first (scored against
+                        its own reference), then the change                      [0]
   --path FILE           instead of the table above: walk one scene's camera path (a
                         *.path.json, docs/sidecar-format.md) with each configuration, one
                         field update and frame per 1/--path-rate s of the path (a tracking
@@ -198,6 +201,13 @@ struct WarmField {
   std::unique_ptr<Renderer> renderer;
   FrameSettings settings;
 
+  // The probe rays the next frame's field update will trace (adaptive rays trace fewer).
+  Result<double> next_update_rays() {
+    DDGI_ASSIGN_OR_RETURN(const std::vector<uint8_t> lit, gi->field()->probes_lit_by_next_update());
+    const double probes = double(std::count(lit.begin(), lit.end(), uint8_t{1}));
+    return probes * gi->field()->params().rays_per_probe;
+  }
+
   // One frame with one field update: its error against `refs`' field part, and its GPU ms.
   Result<std::pair<double, double>> frame(const ReferencePair& refs) {
     DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(settings.direct_mode, {}));
@@ -226,13 +236,15 @@ Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Sce
   return w;
 }
 
-// --dynamic: a field warmed up on `scene`, then `change` applied and one frame (with one field
-// update) after another scored against the changed scene's reference; its steady error is the
-// median over kSteadyFrames of the same configuration warmed up on the changed scene.
+// --dynamic: a field warmed up on `scene`, --response-static frames of it scored against
+// `before` (the unchanged scene's reference), then `change` applied and one frame (with one
+// field update) after another scored against the changed scene's reference; its steady error is
+// the median over kSteadyFrames of the same configuration warmed up on the changed scene.
 Result<tools::ResponseCurve> field_response(vk::Context& context, const EvalJob& job,
                                             const Scene& scene, const Scene& changed,
                                             const tools::SceneChange& change,
-                                            const ReferencePair& refs, const Config& config) {
+                                            const ReferencePair& refs, const ReferencePair* before,
+                                            const Config& config) {
   constexpr int kSteadyFrames = 11;
   tools::ResponseCurve curve{config.name, {}, {}};
   {
@@ -247,17 +259,23 @@ Result<tools::ResponseCurve> field_response(vk::Context& context, const EvalJob&
     curve.steady = errors[kSteadyFrames / 2];
   }
   DDGI_ASSIGN_OR_RETURN(WarmField w, warm_field(context, job, scene, scene, refs, config));
+  auto record = [&](const ReferencePair& reference) -> Status {
+    DDGI_ASSIGN_OR_RETURN(const double rays, w.next_update_rays());
+    DDGI_ASSIGN_OR_RETURN(const auto frame, w.frame(reference));
+    curve.error.push_back(frame.first);
+    curve.ms.push_back(frame.second);
+    curve.rays.push_back(rays);
+    return ok_status();
+  };
+  for (int64_t f = 0; f < job.response_static; ++f) DDGI_TRY(record(*before));
+  curve.change_frame = job.response_static;
   if (change.kind == tools::SceneChange::Kind::kLight) {
     DDGI_TRY(w.gi->scene().set_lights(changed.lights));
   } else {
     DDGI_TRY(w.gi->scene().set_instance_transform(change.index,
                                                   changed.instances[change.index].transform));
   }
-  for (int64_t f = 0; f < job.response_frames; ++f) {
-    DDGI_ASSIGN_OR_RETURN(const auto frame, w.frame(refs));
-    curve.error.push_back(frame.first);
-    curve.ms.push_back(frame.second);
-  }
+  for (int64_t f = 0; f < job.response_frames; ++f) DDGI_TRY(record(refs));
   return curve;
 }
 
@@ -288,7 +306,8 @@ void print_response(const std::string& stem, const std::vector<tools::ResponseCu
     const double target = i + 1 == curves.size() ? best : c.steady;
     const int64_t frames = c.frames_until_within(target);
     std::printf("| %s | %s | %.4f | %.4f | %s | %s |\n", stem.c_str(), c.name.c_str(),
-                c.error.front(), target, frames < 0 ? "never" : std::to_string(frames).c_str(),
+                c.error[size_t(c.change_frame)], target,
+                frames < 0 ? "never" : std::to_string(frames).c_str(),
                 frames < 0 ? "-" : std::to_string(c.ms_until(frames)).substr(0, 7).c_str());
   }
   std::fflush(stdout);
@@ -310,10 +329,16 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
     DDGI_ASSIGN_OR_RETURN(
         const ReferencePair refs,
         tools::make_references(context, job, changed, default_camera(changed), stem + ".changed"));
+    std::optional<ReferencePair> before;
+    if (job.response_static > 0) {
+      DDGI_ASSIGN_OR_RETURN(
+          before, tools::make_references(context, job, scene, default_camera(changed), stem));
+    }
     std::vector<tools::ResponseCurve> curves;
     for (const Config& config : job.configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ResponseCurve curve,
-                            field_response(context, job, scene, changed, change, refs, config));
+                            field_response(context, job, scene, changed, change, refs,
+                                           before ? &*before : nullptr, config));
       curves.push_back(std::move(curve));
     }
     DDGI_ASSIGN_OR_RETURN(tools::ResponseCurve traced,
@@ -353,11 +378,12 @@ void print_fronts(const std::vector<tools::SceneTrade>& trades) {
 
 Status run(int argc, char** argv) {
   DDGI_ASSIGN_OR_RETURN(
-      Flags flags, Flags::parse(argc, argv,
-                                {"width", "height", "spp", "warmup", "frames", "configs", "field",
-                                 "out-dir", "backend", "pareto", "pt-max-spp", "dynamic",
-                                 "response-frames", "path", "path-rate", "path-every", "budgets"},
-                                {"help"}));
+      Flags flags,
+      Flags::parse(argc, argv,
+                   {"width", "height", "spp", "warmup", "frames", "configs", "field", "out-dir",
+                    "backend", "pareto", "pt-max-spp", "dynamic", "response-frames",
+                    "response-static", "path", "path-rate", "path-every", "budgets"},
+                   {"help"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");

@@ -34,4 +34,23 @@ bool field_item(out uint probe, out uint local) {
   return true;
 }
 
+// Adaptive rays (docs/adaptive-rays.md): whether an update's lighting passes take the probe at
+// entry `list_index` of the probe list. Every probe when the dispatch is not adaptive; else
+// hot probes, probes without history and the maintenance slice. The trace and the blend ask
+// the same question of the same flags (the trace does not write them), so they agree.
+bool probe_lit_this_update(uint probe, uint list_index) {
+  if (pc.skip_settled == 0u) return true;
+  const uint flags = probe_states[probe].flags;
+  if ((flags & (kProbeResetHistory | kProbeHeatMask)) != 0u) return true;
+  const uint from_start = (list_index + pc.list_size - field.maintenance_start) % pc.list_size;
+  return from_start < field.maintenance_count;
+}
+
+// field_item() for the lighting passes: also false for a probe this update leaves settled.
+bool field_lit_item(out uint probe, out uint local) {
+  if (!field_item(probe, local)) return false;
+  const uint id = linear_invocation(pc.row_width);
+  return probe_lit_this_update(probe, (pc.list_start + id / pc.per_probe) % pc.list_size);
+}
+
 #endif

@@ -6,6 +6,8 @@
 // 16-byte broadcast reads; each invocation sums them for one irradiance texel and one distance
 // texel at once, in ray order as the split per-texel kernels do, so both give the same texels.
 // Each invocation also writes the border texels that copy its own: no borders pass, no barrier.
+// An adaptive update (docs/adaptive-rays.md) skips the probes it leaves settled, as the trace
+// did, and sets each blended probe's heat from how far its irradiance moved (blended_flags).
 #include "gi/field_blend.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z_id = 2) in;
@@ -16,6 +18,21 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonl
 const uint kRayChunk = 256u;                // 8 KiB of shared memory
 shared vec4 chunk_direction_distance[kRayChunk];  // xyz: direction, w: distance as blended
 shared vec4 chunk_radiance[kRayChunk];            // xyz: radiance towards the probe
+layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDrift, scalar) buffer Drifts {
+  // The largest luminance sum (over its texels) of a probe's history since the field started,
+  // as float bits (non-negative floats order as their bits do: atomicMax).
+  uint brightest_bits;
+  uint pad0, pad1, pad2;
+  ProbeDrift drifts[];
+};
+
+// Adaptive rays: the probe's irradiance as this update estimates it and as its history holds
+// it, in low orders (x: mean luminance over the texels, yzw: luminance-weighted mean direction),
+// summed per invocation, then over the workgroup by its first invocation (the workgroup is
+// IrradianceField's kProbeWorkgroup, 64 invocations).
+const uint kMaxInvocations = 64u;
+shared vec4 fresh_moments[kMaxInvocations];
+shared vec4 old_moments[kMaxInvocations];
 
 // Loads rays [start, start + kRayChunk) of the probe whose rays begin at `first`.
 void load_chunk(uint first, uint start) {
@@ -55,16 +72,62 @@ TexelSums sum_chunk(uint count, bool irradiance, vec3 irradiance_direction, bool
   return sums;
 }
 
+// How far this update's estimate of the probe lies from its history, signed, relative to their
+// size, or to kDriftFloor of the brightest probe's where that is larger (changes of light far
+// too dim to see do not count): the low orders of all its rays together.
+vec4 probe_change() {
+  vec4 fresh = vec4(0.0), old = vec4(0.0);
+  for (uint i = 0u; i < min(gl_WorkGroupSize.x, kMaxInvocations); ++i) {
+    fresh += fresh_moments[i];
+    old += old_moments[i];
+  }
+  atomicMax(brightest_bits, floatBitsToUint(old.x));
+  const float floor = kDriftFloor * 2.0 * uintBitsToFloat(brightest_bits);
+  return (fresh - old) / max(fresh.x + old.x, max(floor, 1e-30));
+}
+
+float change_size(vec4 change) { return abs(change.x) + length(change.yzw); }
+
+// The probe's flags after its blend: history valid and, in an adaptive update, its heat: full
+// when it has just started or its drift (its changes averaged over the last updates, where
+// noise cancels and a history still catching up does not) is a gap (field_data.h), else one
+// less than it was.
+uint blended_flags(uint probe, uint flags, bool reset) {
+  flags &= ~kProbeResetHistory;
+  if (pc.skip_settled == 0u) return flags;
+  ProbeDrift seen = drifts[probe];
+  if (reset) {
+    seen.drift = vec4(0.0);
+    seen.usual = 0.0;
+  } else {
+    const vec4 change = probe_change();
+    seen.drift = mix(seen.drift, change, kDriftWeight);
+    seen.usual = mix(seen.usual, change_size(change), kUsualWeight);
+  }
+  drifts[probe] = seen;
+  const uint heat = (flags & kProbeHeatMask) >> kProbeHeatShift;
+  const float drift = change_size(seen.drift);
+  const bool changing =
+      reset || (drift > field.settle_threshold && drift > kDriftOverUsual * seen.usual);
+  const uint next = changing ? field.hot_updates : (heat > 0u ? heat - 1u : 0u);
+  return (flags & ~kProbeHeatMask) | (min(next, 0xFFu) << kProbeHeatShift);
+}
+
 void main() {
   // One workgroup per probe of the window; rows of workgroups when the window is long.
   const uint slot = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
   if (slot >= pc.count) return;  // the whole workgroup
-  const uint probe = probe_list[(pc.list_start + slot) % pc.list_size];
+  const uint list_index = (pc.list_start + slot) % pc.list_size;
+  const uint probe = probe_list[list_index];
+  if (!probe_lit_this_update(probe, list_index)) return;  // the whole workgroup, as the trace
   select_probe_volume(probe);
-  const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
+  const uint flags = probe_states[probe].flags;
+  const bool reset = (flags & kProbeResetHistory) != 0u;
+  const bool adaptive = pc.skip_settled != 0u;
   const uint first = probe * rays_per_probe_total() + field.fixed_rays;
   const uint n = field.rays_per_probe;
   const uint ni = field.irradiance_texels, nd = field.distance_texels;
+  vec4 fresh_sum = vec4(0.0), old_sum = vec4(0.0);  // adaptive rays: this invocation's texels
 
   // Invocation t of a round takes irradiance texel t and distance texel t (where they exist).
   for (uint base = 0u; base < max(ni * ni, nd * nd); base += gl_WorkGroupSize.x) {
@@ -86,10 +149,12 @@ void main() {
                        distance_direction, sums);
     }
     if (irradiance) {
-      const vec4 texel =
-          blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz, sums.irradiance.w,
-                                 reset);
+      vec2 seen;
+      const vec4 texel = blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz,
+                                                sums.irradiance.w, reset, seen);
       store_irradiance_border_copies(probe, irradiance_ij, texel);
+      fresh_sum += seen.x * vec4(1.0, irradiance_direction);
+      old_sum += seen.y * vec4(1.0, irradiance_direction);
     }
     if (distance) {
       const vec4 texel =
@@ -97,6 +162,13 @@ void main() {
       store_distance_border_copies(probe, distance_ij, texel);
     }
   }
-  // Every invocation read the flag before this; no other workgroup blends this probe.
-  if (gl_LocalInvocationIndex == 0u) probe_states[probe].flags &= ~kProbeResetHistory;
+  if (adaptive && gl_LocalInvocationIndex < kMaxInvocations) {
+    fresh_moments[gl_LocalInvocationIndex] = fresh_sum;
+    old_moments[gl_LocalInvocationIndex] = old_sum;
+  }
+  barrier();  // every invocation's sums are in
+  // Every invocation read the flags before this; no other workgroup blends this probe.
+  if (gl_LocalInvocationIndex == 0u) {
+    probe_states[probe].flags = blended_flags(probe, flags, reset);
+  }
 }

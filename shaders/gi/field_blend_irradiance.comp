@@ -28,5 +28,6 @@ void main() {
     }
   }
   const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
-  blend_irradiance_texel(probe, ij, sum, weight_sum, reset);
+  vec2 seen;  // adaptive rays take the fused blend only (IrradianceField::check_path_fits)
+  blend_irradiance_texel(probe, ij, sum, weight_sum, reset, seen);
 }

@@ -13,7 +13,7 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) writeon
 
 void main() {
   uint probe, local;
-  if (!field_item(probe, local)) return;
+  if (!field_lit_item(probe, local)) return;
   const uint r = pc.first_ray + local;
   const Hit hit = trace_closest(probe_position(probe), probe_ray_direction(r), 0.0,
                                 field.max_ray_distance);

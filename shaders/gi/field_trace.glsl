@@ -14,7 +14,7 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) writeon
 
 void main() {
   uint probe, local;
-  if (!field_item(probe, local)) return;
+  if (!field_lit_item(probe, local)) return;
   const uint r = pc.first_ray + local;
   const uint index = probe * rays_per_probe_total() + r;
   const vec3 origin = probe_position(probe);

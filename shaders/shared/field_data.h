@@ -27,6 +27,7 @@ DDGI_CONST uint kFieldUpdateBindingIrradianceOut = 1;  // image2D view of the ir
 DDGI_CONST uint kFieldUpdateBindingDistanceOut = 2;    // image2D view of the distance atlas
 DDGI_CONST uint kFieldUpdateBindingProbeList = 3;      // uint probe index per list entry
 DDGI_CONST uint kFieldUpdateBindingSurfels = 4;        // ProbeSurfel per ray (split update only)
+DDGI_CONST uint kFieldUpdateBindingDrift = 5;          // 16-byte header, ProbeDrift per probe
 
 // Atlas layout: probe p's tile is (p % tiles_per_row, p / tiles_per_row); a tile is the
 // octahedral map plus a one-texel border copied from the opposite edges.
@@ -43,6 +44,10 @@ DDGI_CONST uint kProbeAwake = 1u;     // woken by a moving object nearby: traced
 DDGI_CONST uint kProbeSleeping = 2u;  // no surface within reach: not traced
 DDGI_CONST uint kProbeOff = 3u;       // inside geometry: never traced, never sampled
 DDGI_CONST uint kProbeStateCount = 4u;
+// ProbeState::flags, bits 16..23: the probe's heat (adaptive rays, docs/adaptive-rays.md):
+// lighting updates left in which it is traced whatever the maintenance slice; 0: settled.
+DDGI_CONST uint kProbeHeatShift = 16u;
+DDGI_CONST uint kProbeHeatMask = 0xFFu << 16u;
 
 // ProbeSurfel::flags
 DDGI_CONST uint kRayHit = 1u;
@@ -64,6 +69,15 @@ struct ProbeState {
 struct ProbeRay {
   vec3 radiance;  // towards the probe (0 from back faces and from fixed rays, which are not lit)
   float distance;
+};
+
+// Adaptive rays: what a probe's blends measured (field_blend.comp).
+struct ProbeDrift {
+  vec4 drift;   // x: mean luminance, yzw: mean direction; changes relative to the probe's size
+  float usual;  // the usual size of one update's change
+  float pad0;
+  float pad1;
+  float pad2;
 };
 
 // An SH field's probe: radiance projected on the nine real SH functions of bands 0-2
@@ -138,8 +152,30 @@ struct FieldConstants {
   vec3 blend_min;
   vec3 blend_max;
   vec3 blend_cell;
+  // --- Adaptive rays (IrradianceFieldParams::settle_threshold; docs/adaptive-rays.md): the
+  // lighting passes of an adaptive update (FieldDispatch::skip_settled) take a probe of their
+  // window only when it is hot, has no history, or its probe-list entry lies in the maintenance
+  // slice [maintenance_start, maintenance_start + maintenance_count) of the list (wrapping).
+  float settle_threshold;  // a probe whose drift exceeds this is hot (kDriftWeight)
+  uint hot_updates;        // heat a probe gets when its change exceeds settle_threshold
+  uint maintenance_start;
+  uint maintenance_count;
   uint pad0;
 };
+
+// Adaptive rays (docs/adaptive-rays.md): a probe's drift follows its change in each update it
+// is traced (how far the update's estimate of its irradiance lies from its history, in low
+// orders, relative to their size: field_blend.comp) with this weight, so noise averages out
+// over a few updates while a history that has not caught up keeps it large; its usual change
+// follows the change's size with the second weight. Noise alone leaves the drift's size near
+// sqrt(w / (2 - w)) = 0.38 of the usual change, a gap the history has not closed near all of
+// it: a drift above kDriftOverUsual x the usual change (and settle_threshold) is a gap.
+DDGI_CONST float kDriftWeight = 0.25;
+DDGI_CONST float kUsualWeight = 0.1;
+DDGI_CONST float kDriftOverUsual = 0.6;
+// Changes are taken relative to at least this fraction of the brightest probe's irradiance: a
+// closed room that light reaches only as 1e-5 of the lit one's drifts for a long time, unseen.
+DDGI_CONST float kDriftFloor = 1e-3;
 
 // At most this many volumes per field (cascades and static volumes).
 DDGI_CONST uint kMaxFieldVolumes = 8u;
@@ -153,15 +189,15 @@ DDGI_CONST uint kProbeModeStart = 2u;     // a probe that entered a scrolled vol
 // Push constants of the linear (one invocation per item) field kernels. The probes a dispatch
 // works on are a window of the probe list: list[(list_start + i) % list_size].
 struct FieldDispatch {
-  uint count;       // invocations in this dispatch
-  uint row_width;   // invocations per row when the dispatch is folded into 2D
-  uint list_start;  // first entry of the window
-  uint list_size;   // entries in the probe list (the window wraps around)
-  uint per_probe;   // invocations per probe (rays, texels, border texels)
-  uint first_ray;   // ray index of the first ray a tracing dispatch handles
-  uint mode;        // kProbeMode* (relocate/classify kernel); the query kernel: kQueryBlended
-                    // or kQueryVolume0 + v (volume v alone)
-  uint pad0;
+  uint count;         // invocations in this dispatch
+  uint row_width;     // invocations per row when the dispatch is folded into 2D
+  uint list_start;    // first entry of the window
+  uint list_size;     // entries in the probe list (the window wraps around)
+  uint per_probe;     // invocations per probe (rays, texels, border texels)
+  uint first_ray;     // ray index of the first ray a tracing dispatch handles
+  uint mode;          // kProbeMode* (relocate/classify kernel); the query kernel: kQueryBlended
+                      // or kQueryVolume0 + v (volume v alone)
+  uint skip_settled;  // 1: the lighting passes of an adaptive update (FieldConstants)
 };
 
 // The query kernel (tests, the RPC, scripted checks): field irradiance at given points, blended
@@ -185,6 +221,7 @@ struct FieldQuery {
 // C++ only: how the constants above fit together.
 static_assert(kProbeStateMask == 0xFFu << kProbeStateShift && kProbeStateCount <= 0xFFu);
 static_assert((kProbeStateMask & kProbeResetHistory) == 0);
+static_assert((kProbeHeatMask & (kProbeStateMask | kProbeResetHistory)) == 0);
 
 // C++ only: the byte layout GLSL gives these structs (scalar block layout), member by member, so
 // that the C++ and GLSL views of a struct cannot drift apart. A failure means a struct changed:
@@ -196,6 +233,10 @@ static_assert(offsetof(ProbeState, flags) == 12);
 static_assert(sizeof(ProbeRay) == 16);
 static_assert(offsetof(ProbeRay, radiance) == 0);
 static_assert(offsetof(ProbeRay, distance) == 12);
+
+static_assert(sizeof(ProbeDrift) == 32);
+static_assert(offsetof(ProbeDrift, drift) == 0);
+static_assert(offsetof(ProbeDrift, usual) == 16);
 
 static_assert(sizeof(ShProbe) == 108);
 static_assert(offsetof(ShProbe, coefficients) == 0);
@@ -209,7 +250,7 @@ static_assert(offsetof(ProbeSurfel, emission) == 32);
 static_assert(offsetof(ProbeSurfel, flags) == 44);
 static_assert(offsetof(ProbeSurfel, geometric_normal_oct) == 48);
 
-static_assert(sizeof(FieldConstants) == 288);
+static_assert(sizeof(FieldConstants) == 304);
 static_assert(offsetof(FieldConstants, origin) == 0);
 static_assert(offsetof(FieldConstants, rays_per_probe) == 12);
 static_assert(offsetof(FieldConstants, spacing) == 16);
@@ -250,7 +291,11 @@ static_assert(offsetof(FieldConstants, volume_count) == 244);
 static_assert(offsetof(FieldConstants, blend_min) == 248);
 static_assert(offsetof(FieldConstants, blend_max) == 260);
 static_assert(offsetof(FieldConstants, blend_cell) == 272);
-static_assert(offsetof(FieldConstants, pad0) == 284);
+static_assert(offsetof(FieldConstants, settle_threshold) == 284);
+static_assert(offsetof(FieldConstants, hot_updates) == 288);
+static_assert(offsetof(FieldConstants, maintenance_start) == 292);
+static_assert(offsetof(FieldConstants, maintenance_count) == 296);
+static_assert(offsetof(FieldConstants, pad0) == 300);
 
 static_assert(sizeof(FieldDispatch) == 32);
 static_assert(offsetof(FieldDispatch, count) == 0);
@@ -260,7 +305,7 @@ static_assert(offsetof(FieldDispatch, list_size) == 12);
 static_assert(offsetof(FieldDispatch, per_probe) == 16);
 static_assert(offsetof(FieldDispatch, first_ray) == 20);
 static_assert(offsetof(FieldDispatch, mode) == 24);
-static_assert(offsetof(FieldDispatch, pad0) == 28);
+static_assert(offsetof(FieldDispatch, skip_settled) == 28);
 
 static_assert(sizeof(FieldQuery) == 48);
 static_assert(offsetof(FieldQuery, position) == 0);

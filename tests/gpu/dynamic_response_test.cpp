@@ -106,8 +106,9 @@ TEST(DynamicResponseCli, LowHysteresisSettlesSoonerAfterALightMove) {
   EXPECT_GE(traced.frames, 1);
   const std::string csv = slurp(dir / "out" / "cornell_box.response.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
-  EXPECT_EQ(csv.rfind("frame,slow,fast,\"path tracing, 1 spp per frame\"\n", 0), 0u)
-      << csv.substr(0, 60);
+  EXPECT_EQ(csv.rfind("frame,slow,slow rays,fast,fast rays,\"path tracing, 1 spp per frame\"\n", 0),
+            0u)
+      << csv.substr(0, 80);
   const std::string svg = slurp(dir / "out" / "cornell_box.response.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("frames after the change"), std::string::npos);

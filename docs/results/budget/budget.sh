@@ -4,7 +4,8 @@
 # FLIP against a 256-spp reference), then the server's own calibration and its choice for 1, 2,
 # 4 and 8 ms beside the measurements: the chosen configuration's measured ms over the budget
 # (goal <= 1.1) and its FLIP over the best measured configuration within the budget (goal <= 1.1).
-# Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-eval` carried
+# With --pareto, each scene's candidates also make its Pareto plot against the path tracer
+# (1..8 spp). Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-eval` carried
 # (.devcarry, .gl); one batch per call keeps each under the 10-minute limit:
 #   budget.sh OUT 1    cornell_box, two_rooms_open, veach_ajar
 #   budget.sh OUT 2    staircase, modern_hall, living_room
@@ -21,4 +22,7 @@ case $batch in
 esac
 # shellcheck disable=SC2086  # the scene list is words
 ddgi-eval $scenes --width 1920 --height 1080 --spp 256 --warmup 64 --frames 9 \
-  --backend pipeline --budgets 1,2,4,8 2>&1 | tee "$out/budget-$batch.txt"
+  --backend pipeline --budgets 1,2,4,8 --pareto "$out/pareto-$batch" --pt-max-spp 8 2>&1 |
+  tee "$out/budget-$batch.txt"
+# Only 8 files come back from a device run: the per-scene JSON and plots travel as one archive.
+tar czf "$out/pareto-$batch.tgz" -C "$out" "pareto-$batch" && rm -rf "${out:?}/pareto-$batch"

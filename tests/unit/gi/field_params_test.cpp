@@ -258,6 +258,9 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"min_frontface_distance", "0.2"},
       {"backface_threshold", "0.45"},
       {"max_rays_per_update", "1000"},
+      {"settle_threshold", "0.02"},
+      {"hot_updates", "12"},
+      {"maintenance_rate", "0.25"},
       {"emitter_samples", "2"},
       {"probe_direct", "ao"},
       {"seed", "11"},
@@ -295,6 +298,9 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.min_frontface_distance = 0.2f;
   expected.backface_threshold = 0.45f;
   expected.max_rays_per_update = 1000;
+  expected.settle_threshold = 0.02f;
+  expected.hot_updates = 12;
+  expected.maintenance_rate = 0.25f;
   expected.emitter_samples = 2;
   expected.probe_direct = DirectMode::kAmbientOcclusion;
   expected.seed = 11;
