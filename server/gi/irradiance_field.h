@@ -162,7 +162,8 @@ class IrradianceField {
   // Every probe's offset and flags (state in bits 8..15), for dumps and tests.
   Result<std::vector<gpu::ProbeState>> read_probe_states();
   // Probe rays the last recorded update traced (its blended rays: the fixed rays are traced
-  // only by probe management).
+  // only by probe management). With adaptive rays, what its window allowed: settled probes
+  // outside the maintenance slice end at once (probes_lit_by_next_update() counts the rest).
   uint64_t last_update_probe_rays() const {
     return uint64_t(last_update_rays_.probes) * last_update_rays_.per_probe;
   }
