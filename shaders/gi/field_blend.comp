@@ -151,7 +151,7 @@ void main() {
     if (irradiance) {
       vec2 seen;
       const vec4 texel = blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz,
-                                                sums.irradiance.w, reset, seen);
+                                                sums.irradiance.w, reset, adaptive, seen);
       store_irradiance_border_copies(probe, irradiance_ij, texel);
       fresh_sum += seen.x * vec4(1.0, irradiance_direction);
       old_sum += seen.y * vec4(1.0, irradiance_direction);

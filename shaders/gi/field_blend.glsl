@@ -25,11 +25,11 @@ ivec2 texel_coord(uint probe, uvec2 ij, uint texels) {
 }
 
 // Blends the cosine-weighted radiance `sum` / `weight_sum` into irradiance texel ij; returns
-// the texel as stored (the history, unchanged, when no ray reached its hemisphere). `seen`: this
-// update's estimate and the history as linear luminance (what adaptive rays compare,
-// field_blend.comp); zeros without rays or history.
+// the texel as stored (the history, unchanged, when no ray reached its hemisphere). `seen`, when
+// `measure` (an adaptive update): this update's estimate and the history as linear luminance
+// (what adaptive rays compare, field_blend.comp); zeros otherwise and without rays or history.
 vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bool reset,
-                            out vec2 seen) {
+                            bool measure, out vec2 seen) {
   const ivec2 coord = texel_coord(probe, ij, field.irradiance_texels);
   const vec4 history = imageLoad(irradiance_out, coord);
   seen = vec2(0.0);
@@ -48,9 +48,11 @@ vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bo
                          max(max_component(max(fresh, old)), 1e-30);
     if (change > field.change_threshold) hysteresis = max(0.0, hysteresis - 0.15);
     if (change > field.new_distribution_threshold) hysteresis = 0.0;
-    const vec3 luminance = vec3(0.2126, 0.7152, 0.0722);
-    seen = vec2(dot(luminance, fresh_linear),
-                dot(luminance, pow(old, vec3(field.irradiance_gamma))));
+    if (measure) {
+      const vec3 luminance = vec3(0.2126, 0.7152, 0.0722);
+      seen = vec2(dot(luminance, fresh_linear),
+                  dot(luminance, pow(old, vec3(field.irradiance_gamma))));
+    }
   }
   const vec4 texel = vec4(mix(fresh, old, hysteresis), 1.0);
   imageStore(irradiance_out, coord, texel);

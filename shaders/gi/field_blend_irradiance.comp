@@ -29,5 +29,5 @@ void main() {
   }
   const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
   vec2 seen;  // adaptive rays take the fused blend only (IrradianceField::check_path_fits)
-  blend_irradiance_texel(probe, ij, sum, weight_sum, reset, seen);
+  blend_irradiance_texel(probe, ij, sum, weight_sum, reset, false, seen);
 }
