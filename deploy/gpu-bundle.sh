@@ -25,6 +25,8 @@ for bin in .devcarry/bin/ddgi-*; do
   ldd "$bin" | awk '/=> \//{print $3}'
 done | sort -u | grep -vE '/(libc|libm|libpthread|libdl|librt|ld-linux-x86-64|libresolv)\.so' |
   while read -r lib; do cp -L "$lib" .devcarry/lib/; done
+# The plots' font (server/tools/plot_raster.h): the GPU host may have none.
+mkdir -p .devcarry/fonts && cp /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf .devcarry/fonts/
 if [ "$with_scenes" = 1 ]; then
   rm -rf .devcarry/scenes && cp -r ../shared/scenes .devcarry/scenes
 fi

@@ -15,4 +15,5 @@ if [ -d .devcarry/scenes ] && [ ! -e ../shared/scenes ]; then
 fi
 export PATH="$PWD/.devcarry/bin:$PATH"
 export LD_LIBRARY_PATH="$PWD/.devcarry/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export DDGI_PLOT_FONT="$PWD/.devcarry/fonts/DejaVuSans.ttf"
 exec "$@"

@@ -21,7 +21,7 @@ $SUDO apt-get install -y -q --no-install-recommends \
   libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools \
   libglm-dev \
   libgrpc++-dev protobuf-compiler protobuf-compiler-grpc libprotobuf-dev \
-  libtinygltf-dev nlohmann-json3-dev libstb-dev \
+  libtinygltf-dev nlohmann-json3-dev libstb-dev fonts-dejavu-core \
   libturbojpeg0-dev libjpeg62-turbo-dev \
   libopenexr-dev \
   libcivetweb-dev \

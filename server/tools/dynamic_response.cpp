@@ -116,7 +116,7 @@ ScatterPlot per_frame_plot(const std::vector<ResponseCurve>& curves,
   plot.log_x = false;
   for (const ResponseCurve& curve : curves) {
     if ((curve.*values).empty()) continue;
-    PlotSeries series{curve.name, {}};
+    PlotSeries series{curve.name, {}, true};
     for (size_t f = 0; f < (curve.*values).size(); ++f) {
       series.points.push_back({double(int64_t(f) - curve.change_frame), (curve.*values)[f], ""});
     }
@@ -132,12 +132,12 @@ Status write_response_files(const std::string& dir, const std::string& stem,
   ScatterPlot errors = per_frame_plot(curves, &ResponseCurve::error);
   errors.title = stem + ": error per frame, the change at frame 0";
   errors.y_label = "relative L1 error against the reference";
-  DDGI_TRY(write_text_file(dir + "/" + stem + ".response.svg", scatter_plot_svg(errors)));
+  DDGI_TRY(write_scatter_plot(dir + "/" + stem + ".response", errors));
   ScatterPlot rays = per_frame_plot(curves, &ResponseCurve::rays);
   rays.title = stem + ": probe rays traced per frame, the change at frame 0";
   rays.y_label = "probe rays per field update";
   if (!rays.series.empty()) {
-    DDGI_TRY(write_text_file(dir + "/" + stem + ".rays.svg", scatter_plot_svg(rays)));
+    DDGI_TRY(write_scatter_plot(dir + "/" + stem + ".rays", rays));
   }
 
   // Rows from the earliest frame before the change to the last after it.

@@ -66,8 +66,8 @@ readbacks not included).
   --pareto DIR          also time the path tracer at 1, 2, 4, ... --pt-max-spp samples per
                         pixel, and write per scene DIR/SCENE.json (every configuration, the
                         Pareto front of FLIP against GPU ms, each front point's FLIP over the
-                        path tracer's at the same ms) and DIR/SCENE.svg (the plot); DIR must
-                        exist
+                        path tracer's at the same ms) and DIR/SCENE.svg and .png (the plot);
+                        DIR must exist
   --pt-max-spp N        the path tracer's largest sample count for --pareto      [64]
   --dynamic CHANGE      instead of the table above: warm each configuration up, apply CHANGE
                         (light:INDEX:dx,dy,dz or object:INDEX:dx,dy,dz), render
@@ -79,8 +79,9 @@ readbacks not included).
                         steady error (the configuration warmed up on the changed scene), the
                         frames and GPU ms until the error stays within 10% of it (the path
                         tracer: of the best configuration's), judged on 10-frame means; writes
-                        DIR/SCENE.response.svg and .csv with --pareto DIR, and
-                        DIR/SCENE.rays.svg: the probe rays each frame's update traced
+                        DIR/SCENE.response.svg, .png and .csv with --pareto DIR, and
+                        DIR/SCENE.rays.svg and .png: the probe rays each frame's update
+                        traced
   --response-static N   --dynamic: N frames of the scene as loaded first (scored against
                         its own reference), then the change                      [0]
   --path FILE           instead of the table above: walk one scene's camera path (a
@@ -90,7 +91,7 @@ readbacks not included).
                         against a path-traced reference of that view; print per view and per
                         configuration its errors, field ms and the frame-to-frame change of
                         the indirect view at scroll events and otherwise; with --out-dir also
-                        DIR/SCENE.path.svg and .csv (FLIP along the path)
+                        DIR/SCENE.path.svg, .png and .csv (FLIP along the path)
   --path-rate N         frames per second of the path                  [30]
   --path-every S        seconds between scored views                   [10]
   --budgets LIST        the time budget (budget_ms) checked: the table's configurations

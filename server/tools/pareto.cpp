@@ -34,8 +34,8 @@ ScatterPlot trade_plot(const SceneTrade& trade, const std::vector<size_t>& front
                " spp)";
   plot.x_label = "GPU ms per frame (field update + frame; path tracing: one image)";
   plot.y_label = "mean FLIP against the reference (lower is better)";
-  PlotSeries configs{"DDGI configurations", {}}, best{"Pareto front", {}};
-  PlotSeries traced{"path tracing (spp)", {}};
+  PlotSeries configs{"DDGI configurations", {}}, best{"Pareto front", {}, true};
+  PlotSeries traced{"path tracing (spp)", {}, true};
   for (const ConfigPoint& c : trade.configs)
     configs.points.push_back({c.total_ms(), c.full.flip, c.name});
   for (size_t i : front) {
@@ -118,8 +118,7 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
     doc["front"].push_back(entry);
   }
   DDGI_TRY(write_text_file(dir + "/" + trade.scene + ".json", doc.dump(2) + "\n"));
-  return write_text_file(dir + "/" + trade.scene + ".svg",
-                         scatter_plot_svg(trade_plot(trade, front)));
+  return write_scatter_plot(dir + "/" + trade.scene, trade_plot(trade, front));
 }
 
 }  // namespace ddgi::tools

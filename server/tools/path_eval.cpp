@@ -219,7 +219,7 @@ void print_summary(const std::vector<PathWalk>& walks) {
   }
 }
 
-// DIR/STEM.path.svg and .csv: full-frame FLIP at every scored view, per configuration.
+// DIR/STEM.path.svg, .png and .csv: full-frame FLIP at every scored view, per configuration.
 Status write_path_files(const std::string& dir, const std::string& stem,
                         const std::vector<PathView>& views, const std::vector<PathWalk>& walks) {
   ScatterPlot plot;
@@ -231,7 +231,7 @@ Status write_path_files(const std::string& dir, const std::string& stem,
   csv << "time,x,y,z";
   for (const PathWalk& w : walks) {
     csv << "," << csv_field(w.name + " FLIP") << "," << csv_field(w.name + " PSNR");
-    PlotSeries series{w.name, {}};
+    PlotSeries series{w.name, {}, true};
     for (size_t v = 0; v < views.size(); ++v) {
       series.points.push_back({views[v].time, w.full[v].flip, ""});
     }
@@ -244,7 +244,7 @@ Status write_path_files(const std::string& dir, const std::string& stem,
     for (const PathWalk& w : walks) csv << "," << w.full[v].flip << "," << w.full[v].psnr;
     csv << "\n";
   }
-  DDGI_TRY(write_text_file(dir + "/" + stem + ".path.svg", scatter_plot_svg(plot)));
+  DDGI_TRY(write_scatter_plot(dir + "/" + stem + ".path", plot));
   return write_text_file(dir + "/" + stem + ".path.csv", csv.str());
 }
 

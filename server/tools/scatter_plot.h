@@ -1,5 +1,6 @@
-// A scatter plot as a self-contained SVG file: what ddgi-shadow-eval and ddgi-eval --pareto
-// draw error against GPU time with (no plotting dependency; the SVG is plain text).
+// A scatter plot written as two files of the same drawing: SVG (plain text, scalable, points
+// labelled on hover) and PNG (for viewers and documents that do not show SVG). What
+// ddgi-shadow-eval and ddgi-eval draw error against GPU time, or per frame, with.
 #pragma once
 
 #include <string>
@@ -18,6 +19,7 @@ struct PlotPoint {
 struct PlotSeries {
   std::string name;  // legend entry
   std::vector<PlotPoint> points;
+  bool connected = false;  // a curve: a line through the points in x order (small markers)
 };
 
 struct ScatterPlot {
@@ -31,6 +33,9 @@ struct ScatterPlot {
 // The plot as SVG text. Points with non-finite or (on a log axis) non-positive coordinates are
 // left out.
 std::string scatter_plot_svg(const ScatterPlot& plot);
+
+// STEM.svg and STEM.png (plot_raster.h draws the PNG).
+Status write_scatter_plot(const std::string& stem, const ScatterPlot& plot);
 
 // A CSV field (RFC 4180) for the tables written beside plots: quoted when it holds a comma, a
 // quote or a line break.

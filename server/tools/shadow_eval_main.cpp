@@ -58,7 +58,8 @@ after @ is what the shadow grids are fitted to (default: the scene's bounds).
   --light-samples N     shadow rays per spherical light in the shadow-rays mode [1]
   --shadow-field NAME=VALUE  any other shadow-field parameter, for every field (repeatable)
   --gi on|off           irradiance field in the full images            [on]
-  --svg FILE            also write the plot: FLIP of the direct image vs its GPU ms
+  --svg FILE            also write the plot: FLIP of the direct image vs its GPU ms, as
+                        FILE (ending in .svg) and the same name ending in .png
   --out-dir DIR         also write every reference and frame as PNG there
   --backend B           auto | query | pipeline                        [auto]
 )";
@@ -404,6 +405,12 @@ Status run(int argc, char** argv) {
   o.shadow_assignments = flags.get_all("shadow-field");
   DDGI_ASSIGN_OR_RETURN(o.out_dir, flags.get_string("out-dir", ""));
   DDGI_ASSIGN_OR_RETURN(const std::string svg_path, flags.get_string("svg", ""));
+  if (!svg_path.empty() && !svg_path.ends_with(".svg")) {
+    return invalid_argument(
+        "--svg must name a file ending in .svg (the PNG is written beside it "
+        "with .png): got '" +
+        svg_path + "'");
+  }
   // Fail on a bad assignment before any GPU work.
   ShadowFieldParams check;
   DDGI_TRY(shadow_param_table().apply(check, o.shadow_assignments));
@@ -428,7 +435,9 @@ Status run(int argc, char** argv) {
     DDGI_TRY(evaluate_scene(*context, arg, o, pass_rows, plot));
   }
   print_pass_table(pass_rows);
-  if (!svg_path.empty()) DDGI_TRY(write_text_file(svg_path, scatter_plot_svg(plot)));
+  if (!svg_path.empty()) {
+    DDGI_TRY(write_scatter_plot(svg_path.substr(0, svg_path.size() - 4), plot));
+  }
   return ok_status();
 }
 

@@ -262,6 +262,7 @@ TEST(AdaptiveRaysCli, EvalRecordsTheRaysOfEachFrameBeforeAndAfterTheChange) {
   const std::string svg = slurp(dir / "out" / "cornell_box.rays.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("probe rays per field update"), std::string::npos);
+  EXPECT_GT(plot_pixels_of_colour(dir / "out" / "cornell_box.rays.png", 0x1f77b4), 45);
   std::filesystem::remove_all(dir);
 }
 

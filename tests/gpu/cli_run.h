@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "encode/file_io.h"
+#include "encode/png.h"
+
 namespace ddgi::test {
 
 struct CliRun {
@@ -37,6 +40,22 @@ inline std::vector<std::string> markdown_cells(const std::string& row) {
     cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
   }
   return cells;
+}
+
+// The pixels of a plot's PNG (tools/plot_raster.h) with exactly the colour 0xRRGGBB: a series'
+// markers (and its legend marker). -1 when the file does not decode.
+inline int64_t plot_pixels_of_colour(const std::filesystem::path& png, uint32_t rgb) {
+  const Result<std::vector<uint8_t>> bytes = encode::read_file(png.string());
+  if (!bytes.ok()) return -1;
+  const Result<encode::ImageRgba8> image = encode::decode_png(*bytes);
+  if (!image.ok()) return -1;
+  int64_t count = 0;
+  for (size_t i = 0; i + 3 < image->pixels.size(); i += 4) {
+    const uint32_t pixel = uint32_t(image->pixels[i]) << 16 | uint32_t(image->pixels[i + 1]) << 8 |
+                           uint32_t(image->pixels[i + 2]);
+    count += pixel == rgb ? 1 : 0;
+  }
+  return count;
 }
 
 // `executable` with `arguments` (shell words), run in DDGI_SOURCE_DIR; its output files go into

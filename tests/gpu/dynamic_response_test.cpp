@@ -112,6 +112,8 @@ TEST(DynamicResponseCli, LowHysteresisSettlesSoonerAfterALightMove) {
   const std::string svg = slurp(dir / "out" / "cornell_box.response.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("frames after the change"), std::string::npos);
+  // Its PNG: the first configuration's curve, more than its legend marker.
+  EXPECT_GT(plot_pixels_of_colour(dir / "out" / "cornell_box.response.png", 0x1f77b4), 45);
   std::filesystem::remove_all(dir);
 }
 

@@ -128,6 +128,15 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
        {"Pareto front", "path tracing (spp)", "16 rays", "small maps", "sh probes"}) {
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   }
+  // The PNG beside it draws the three series in their colours (first, second, third of
+  // plot_drawing.cpp's): more of each than the legend's marker alone (~40 pixels).
+  const std::filesystem::path png = dir_ / "out" / "cornell_box.png";
+  const int64_t configs = plot_pixels_of_colour(png, 0x1f77b4);
+  const int64_t front_line = plot_pixels_of_colour(png, 0xd62728);
+  const int64_t traced = plot_pixels_of_colour(png, 0x2ca02c);
+  EXPECT_GT(configs, 60) << "DDGI configurations";  // measured 96, 289 and 145
+  EXPECT_GT(front_line, 45) << "Pareto front";
+  EXPECT_GT(traced, 45) << "path tracing";
 }
 
 TEST_F(ParetoCliTest, BadFlagsAreRefusedByName) {

@@ -90,6 +90,7 @@ TEST_F(PathEvalCliTest, ScoresEveryViewAlongThePathAndOnlyTheTrackingFieldScroll
   EXPECT_EQ(fixed[11], "0");
   EXPECT_EQ(tracking[11], "2") << run.out;
   EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / "cornell_box.path.svg"));
+  EXPECT_GT(plot_pixels_of_colour(dir_ / "out" / "cornell_box.path.png", 0x1f77b4), 45);
   EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / "cornell_box.path001.tracking.exr"));
 }
 
