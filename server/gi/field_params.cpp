@@ -310,6 +310,7 @@ IrradianceFieldParams default_field_params(const Scene& scene) {
                                      ? placed(IrradianceFieldParams{}, *scene.probe_grid)
                                      : fit_grid_to_bounds(scene.world_bounds());
   params.static_volumes = scene.probe_volumes;
+  if (scene.has_emissive_surfaces()) params.emitter_samples = kSceneEmitterSamples;
   return params;
 }
 

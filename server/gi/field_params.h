@@ -179,8 +179,12 @@ struct IrradianceFieldParams {
   // and each probe-ray hit takes this many samples on the emitters (area x luminance, one
   // shadow ray each), and probe rays no longer carry the emission they see (it would count
   // twice). 0: off, emitter light reaches surfaces through the field (probe rays hit the
-  // emitters, the 2021 paper's way). [0, 64]. Off by default: the option the field is measured
-  // against (docs/results/field-quality.md); it is noisier per pixel but sharp.
+  // emitters, the 2021 paper's way). [0, 64]. 0 here; a scene with emissive surfaces gets
+  // kSceneEmitterSamples from default_field_params: carried by the field, a small bright emitter
+  // loses light (few probe rays hit it, and the perceptual encoding's temporal blend is a power
+  // mean that undercounts rare bright hits: -37% in DefaultEnergyTest's room, -16 to -19% on
+  // cornell_kajiya and veach_ajar, docs/results/default-energy.md) and a probe grid cannot hold
+  // its steep near field. Sampled, it is noisier per pixel but unbiased.
   uint32_t emitter_samples = 0;
 
   // --- Direct light at probe-ray hits (docs/shadow-field.md, "Probe rays") -------------------
@@ -212,7 +216,14 @@ Status validate(const IrradianceFieldParams& params);
 IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes = 512,
                                          IrradianceFieldParams base = {});
 
-// The grid the scene asks for (sidecar `probe_grid`), else one fitted to its bounds.
+// Emitter samples per pixel and probe-ray hit a scene with emissive surfaces gets by default
+// (IrradianceFieldParams::emitter_samples says why). 2: the frame's mean within 1% of 8
+// samples' on cornell_kajiya at half their frame cost (docs/results/default-energy.md).
+inline constexpr uint32_t kSceneEmitterSamples = 2;
+
+// What a user gets without setting anything: the grid the scene asks for (sidecar
+// `probe_grid`), else one fitted to its bounds, the sidecar's static volumes, and emitter
+// sampling where the scene has emissive surfaces.
 IrradianceFieldParams default_field_params(const Scene& scene);
 
 // Probes of the whole field: every volume's.

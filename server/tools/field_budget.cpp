@@ -167,9 +167,12 @@ std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
                                                const IrradianceFieldParams& base) {
   std::vector<std::pair<std::string, std::vector<std::string>>> grids = {{"", {}}};
   if (coarser_grid_exists(base)) grids.push_back({", coarse", coarse_grid(base)});
+  // Emitter light sampled or carried by the field, whichever the base does not do.
   std::vector<std::pair<std::string, std::vector<std::string>>> emitters = {{"", {}}};
   if (scene.has_emissive_surfaces() && base.emitter_samples == 0) {
     emitters.push_back({", emitters 2", {"emitter_samples=2"}});
+  } else if (scene.has_emissive_surfaces()) {
+    emitters.push_back({", emitters via field", {"emitter_samples=0"}});
   }
   std::vector<BudgetCandidate> candidates;
   for (const uint32_t rays : {32u, 64u, 128u, 256u}) {

@@ -21,9 +21,11 @@ void main() {
   const uint index = pixel.y * pc.width + pixel.x;
   const GBufferTexel texel = gbuffer[index];
   const uint flags = unpack_gbuffer_flags(texel.albedo_flags);
-  // The indirect view shows only what the field brings: nothing seen directly, neither an
-  // emitter nor the environment behind a missed primary ray (the path tracer's field-indirect
-  // view, which ddgi-eval compares it with, leaves both out too).
+  // The indirect view is the frame less what is seen directly (an emitter, the environment
+  // behind a missed primary ray) and less what punctual lights send straight to the surface:
+  // the part the field carries, plus sampled emitters' light, which the field carries when they
+  // are not sampled. The path tracer's field-indirect view, which ddgi-eval compares it with,
+  // is the same part.
   vec3 result = pc.view == kViewIndirect ? vec3(0.0) : texel.emission;
   if ((flags & kGBufferHit) != 0u) {
     Surface s;
@@ -34,19 +36,19 @@ void main() {
     s.front_face = (flags & kGBufferFrontFace) != 0u;
     Rng rng = rng_seed(pixel.x, pixel.y, 0x9e3779b9u);
     const vec3 to_camera = safe_normalize(pc.camera_position - s.position, s.normal);
-    vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,
-                               (pc.flags & kDirectAddSky) != 0u, rng);
-    if ((pc.flags & kDirectSampleEmitters) != 0u) {
-      direct += emitter_direct(s, pc.emitter_samples, rng);
-    }
+    const vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,
+                                     (pc.flags & kDirectAddSky) != 0u, rng);
+    const vec3 emitters = (pc.flags & kDirectSampleEmitters) != 0u
+                              ? emitter_direct(s, pc.emitter_samples, rng)
+                              : vec3(0.0);
     if (pc.view == kViewAlbedo) {
       result = s.albedo;
     } else if (pc.view == kViewNormal) {
       result = s.normal * 0.5 + 0.5;
     } else if (pc.view == kViewIndirect) {
-      result = vec3(0.0);
+      result = emitters;
     } else {
-      result += direct;
+      result += direct + emitters;
     }
   }
   radiance[index] = vec4(sanitize_radiance(result), 1.0);

@@ -79,6 +79,14 @@ TEST_F(FieldBudgetTest, CandidatesVaryOnlyWhatTheSceneHas) {
   // The coarse grid keeps the extent: 4 probes 0.6 apart -> 2 probes 1.8 apart.
   EXPECT_EQ(lit[1].name, "rays 32, emitters 2");
   EXPECT_EQ(lit[2].name, "rays 32, coarse");
+  // A base that samples emitters already (an emitter-lit scene's default) is varied the other
+  // way: emitter light carried by the field.
+  IrradianceFieldParams sampled = base.field;
+  sampled.emitter_samples = kSceneEmitterSamples;
+  const std::vector<BudgetCandidate> flipped = tools::budget_candidates(emitter_lit_box(), sampled);
+  ASSERT_EQ(flipped.size(), 16u);
+  EXPECT_EQ(flipped[1].name, "rays 32, emitters via field");
+  EXPECT_EQ(flipped[1].assignments.back(), "emitter_samples=0");
   IrradianceFieldParams coarse = base.field;
   ASSERT_TRUE(field_param_table().apply(coarse, lit[2].assignments).ok());
   EXPECT_EQ(coarse.counts, glm::ivec3(2, 2, 2));

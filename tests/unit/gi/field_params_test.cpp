@@ -201,6 +201,28 @@ TEST(FieldParams, SceneProbeVolumesAreTheDefaultStaticVolumes) {
   EXPECT_EQ(error_of(p), "");
 }
 
+// Emitter sampling is on by default exactly where a placed primitive uses an emissive material
+// (DefaultEnergyTest shows why); a user's emitter_samples=0 still turns it off.
+TEST(FieldParams, EmissiveScenesSampleTheirEmittersByDefault) {
+  Scene scene;
+  Primitive triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.indices = {0, 1, 2};
+  triangle.material = 0;
+  scene.materials.push_back(Material{});
+  scene.meshes.push_back(Mesh{"tri", {triangle}});
+  scene.instances.push_back(Instance{"tri", 0, 0});
+  EXPECT_EQ(default_field_params(scene).emitter_samples, 0u);  // nothing emits
+  scene.materials.push_back(Material{});
+  scene.materials.back().emissive = glm::vec3(5.0f);
+  EXPECT_EQ(default_field_params(scene).emitter_samples, 0u);  // an emissive material unused
+  scene.meshes[0].primitives[0].material = 1;
+  IrradianceFieldParams p = default_field_params(scene);
+  EXPECT_EQ(p.emitter_samples, kSceneEmitterSamples);
+  ASSERT_TRUE(field_param_table().apply(p, {"emitter_samples=0"}).ok());
+  EXPECT_EQ(p.emitter_samples, 0u);
+}
+
 TEST(FieldParams, FittedGridIsCellCentredInsideTheBounds) {
   Bounds b;
   b.grow({-1, 0, -1});
