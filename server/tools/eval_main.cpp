@@ -25,6 +25,7 @@
 #include "tools/budget_eval.h"
 #include "tools/dynamic_response.h"
 #include "tools/eval_job.h"
+#include "tools/image_upscale.h"
 #include "tools/pareto.h"
 #include "tools/path_eval.h"
 #include "tools/reference_render.h"
@@ -63,8 +64,9 @@ readbacks not included).
                                                                         [default:]
   --field NAME=VALUE    applied to every configuration first (repeatable)
   --out-dir DIR         also write every reference and frame as EXR there
-  --pareto DIR          also time the path tracer at 1, 2, 4, ... --pt-max-spp samples per
-                        pixel, and write per scene DIR/SCENE.json (every configuration, the
+  --pareto DIR          also time the path tracer at 1/16, 1/4 (one sample at a quarter and
+                        half the size each way, upscaled), 1, 2, 4, ... --pt-max-spp samples
+                        per pixel, and write per scene DIR/SCENE.json (every configuration, the
                         Pareto front of FLIP against GPU ms, each front point's FLIP over the
                         path tracer's at the same ms) and DIR/SCENE.svg and .png (the plot);
                         DIR must exist
@@ -166,9 +168,37 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   return point;
 }
 
-// The equal-time baseline: the path tracer at 1, 2, 4, ... job.pt_max_spp samples per pixel
-// (pixel centres, as the frames and the reference), each image made --frames times (the median
-// GPU time counts) and the last scored against the reference.
+// One point of the equal-time baseline: `spp` samples per pixel at 1/downscale of the frame's
+// size each way (pixel centres, as the frames and the reference), made --frames times (the
+// median GPU time counts); the last image, upscaled to the frame's size, scored against the
+// reference.
+Result<tools::PathTracePoint> path_trace_point(PathTracer& tracer, const EvalJob& job,
+                                               const ReferencePair& refs, uint32_t spp,
+                                               uint32_t downscale) {
+  PathTraceSettings settings = refs.settings;
+  settings.width = job.width / downscale;
+  settings.height = job.height / downscale;
+  std::vector<double> times;  // one image per timed frame; the median counts
+  for (int64_t run = 0; run < job.frames; ++run) {
+    tracer.reset();
+    DDGI_TRY(tracer.accumulate(settings, spp));
+    times.push_back(tracer.last_accumulate_ms());
+  }
+  std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+  DDGI_ASSIGN_OR_RETURN(const PathTraceImage traced, tracer.read(Tonemap::kAces, refs.exposure));
+  const PathTraceImage image =
+      downscale == 1 ? traced : tools::upscaled(traced, job.width, job.height);
+  DDGI_ASSIGN_OR_RETURN(
+      const tools::ImageScores scores,
+      score(refs.full.ldr, refs.full.radiance, image.ldr, image.radiance, job.width, job.height));
+  return tools::PathTracePoint{spp, downscale, times[times.size() / 2], scores};
+}
+
+// The equal-time baseline: the path tracer at 1/16 and 1/4 sample per pixel (one sample at a
+// quarter and at half the frame's size each way, where that divides it into at least 8 pixels
+// each way, upscaled: a
+// path tracer's only way to take less time than one sample per pixel), then at 1, 2, 4, ...
+// job.pt_max_spp.
 Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context,
                                                             const EvalJob& job, const Scene& scene,
                                                             const ReferencePair& refs) {
@@ -177,20 +207,19 @@ Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context
   // Untimed images first, so the GPU's clocks are up when timing starts.
   for (int warm = 0; warm < 4; ++warm) DDGI_TRY(tracer->accumulate(refs.settings, 4));
   std::vector<tools::PathTracePoint> curve;
-  for (uint32_t spp = 1; spp <= job.pt_max_spp; spp *= 2) {
-    std::vector<double> times;  // one image per timed frame; the median counts
-    for (int64_t run = 0; run < job.frames; ++run) {
-      tracer->reset();
-      DDGI_TRY(tracer->accumulate(refs.settings, spp));
-      times.push_back(tracer->last_accumulate_ms());
+  for (const uint32_t downscale : {4u, 2u}) {
+    if (job.width % downscale != 0 || job.height % downscale != 0 || job.width / downscale < 8 ||
+        job.height / downscale < 8) {
+      continue;
     }
-    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    const double ms = times[times.size() / 2];
-    DDGI_ASSIGN_OR_RETURN(const PathTraceImage image, tracer->read(Tonemap::kAces, refs.exposure));
-    DDGI_ASSIGN_OR_RETURN(
-        const tools::ImageScores scores,
-        score(refs.full.ldr, refs.full.radiance, image.ldr, image.radiance, job.width, job.height));
-    curve.push_back({spp, ms, scores});
+    DDGI_ASSIGN_OR_RETURN(tools::PathTracePoint point,
+                          path_trace_point(*tracer, job, refs, 1, downscale));
+    curve.push_back(point);
+  }
+  for (uint32_t spp = 1; spp <= job.pt_max_spp; spp *= 2) {
+    DDGI_ASSIGN_OR_RETURN(tools::PathTracePoint point,
+                          path_trace_point(*tracer, job, refs, spp, 1));
+    curve.push_back(point);
   }
   return curve;
 }

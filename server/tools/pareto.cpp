@@ -43,13 +43,19 @@ ScatterPlot trade_plot(const SceneTrade& trade, const std::vector<size_t>& front
     best.points.push_back({c.total_ms(), c.full.flip, ""});
   }
   for (const PathTracePoint& p : trade.path_tracing) {
-    traced.points.push_back({p.ms, p.full.flip, std::to_string(p.spp)});
+    traced.points.push_back({p.ms, p.full.flip, p.label()});
   }
   plot.series = {configs, best, traced};
   return plot;
 }
 
 }  // namespace
+
+std::string PathTracePoint::label() const {
+  const uint32_t pixels = downscale * downscale;
+  if (pixels == 1 || spp % pixels == 0) return std::to_string(spp / pixels);
+  return std::to_string(spp) + "/" + std::to_string(pixels);
+}
 
 std::vector<size_t> pareto_front(const std::vector<ConfigPoint>& configs) {
   std::vector<size_t> order(configs.size());
@@ -102,7 +108,11 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
               {"front", json::array()}};
   for (const ConfigPoint& c : trade.configs) doc["configs"].push_back(config_json(c));
   for (const PathTracePoint& p : trade.path_tracing) {
-    doc["path_tracing"].push_back({{"spp", p.spp}, {"ms", p.ms}, {"full", scores_json(p.full)}});
+    doc["path_tracing"].push_back({{"spp", p.spp},
+                                   {"downscale", p.downscale},
+                                   {"samples_per_pixel", p.samples_per_pixel()},
+                                   {"ms", p.ms},
+                                   {"full", scores_json(p.full)}});
   }
   for (size_t i : front) {
     const ConfigPoint& c = trade.configs[i];

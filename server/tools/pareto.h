@@ -1,8 +1,8 @@
 // The speed-for-accuracy trade of one scene, as `ddgi-eval --pareto DIR` records it: every
 // field configuration's GPU cost and error against the path-traced reference, the Pareto front
-// over them, and the path tracer itself at 1, 2, 4, ... samples per pixel as the equal-time
-// baseline (issue 14). Written per scene as JSON (DIR/SCENE.json) and as an SVG plot of FLIP
-// against milliseconds (DIR/SCENE.svg).
+// over them, and the path tracer itself at 1/16, 1/4 (fewer pixels, upscaled), 1, 2, 4, ...
+// samples per pixel as the equal-time baseline (issue 14). Written per scene as JSON
+// (DIR/SCENE.json) and as a plot of FLIP against milliseconds (DIR/SCENE.svg and .png).
 #pragma once
 
 #include <cstdint>
@@ -35,9 +35,13 @@ struct ConfigPoint {
 };
 
 struct PathTracePoint {
-  uint32_t spp = 0;
-  double ms = 0.0;  // one image of `spp` samples per pixel, GPU time
+  uint32_t spp = 0;        // per traced pixel
+  uint32_t downscale = 1;  // traced at 1/downscale of the frame's width and height, upscaled
+  double ms = 0.0;         // one image, GPU time of the tracing (the upscale not counted)
   ImageScores full;
+  // Samples per frame pixel: 1/16 for one sample at a quarter of the size each way.
+  double samples_per_pixel() const { return double(spp) / (double(downscale) * downscale); }
+  std::string label() const;  // "1/16", "1/4", "1", "2", ...
 };
 
 struct SceneTrade {
@@ -46,7 +50,7 @@ struct SceneTrade {
   uint32_t height = 0;
   uint32_t reference_spp = 0;
   std::vector<ConfigPoint> configs;
-  std::vector<PathTracePoint> path_tracing;  // ascending spp
+  std::vector<PathTracePoint> path_tracing;  // ascending samples per pixel
 };
 
 // The configurations no other beats on both axes (lower total ms and lower FLIP), by ascending

@@ -39,9 +39,9 @@ TEST(Pareto, FrontHoldsThePointsNoOtherBeatsOnBothAxes) {
 // of theirs; outside the measured range there is no value.
 TEST(Pareto, PathTraceFlipAtEqualTime) {
   std::vector<tools::PathTracePoint> curve(3);
-  curve[0] = {1, 1.0, {0, 0, 0.4, 0}};
-  curve[1] = {2, 4.0, {0, 0, 0.2, 0}};
-  curve[2] = {4, 16.0, {0, 0, 0.1, 0}};
+  curve[0] = {1, 1, 1.0, {0, 0, 0.4, 0}};
+  curve[1] = {2, 1, 4.0, {0, 0, 0.2, 0}};
+  curve[2] = {4, 1, 16.0, {0, 0, 0.1, 0}};
   EXPECT_NEAR(*tools::path_trace_flip_at(curve, 2.0), 0.3, 1e-12);
   EXPECT_NEAR(*tools::path_trace_flip_at(curve, 8.0), 0.15, 1e-12);
   EXPECT_NEAR(*tools::path_trace_flip_at(curve, 16.0), 0.1, 1e-12);
@@ -64,9 +64,9 @@ class ParetoCliTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-// Three configurations of different cost, the path tracer at 1, 2, 4 spp. Measured on
-// lavapipe: path-traced FLIP 0.27 / 0.22 / 0.17 at 1 / 2 / 4 spp; the default's mean 0.96 of
-// the reference's.
+// Three configurations of different cost, the path tracer at 1/4, 1, 2, 4 spp. Measured on
+// lavapipe: path-traced FLIP 0.41 / 0.27 / 0.22 / 0.17 at 1/4 / 1 / 2 / 4 spp; the default's
+// mean 0.96 of the reference's.
 TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
   const CliRun run = eval(
       "scenes/cornell_box.gltf --width 40 --height 30 --spp 16 --warmup 4 --frames 1 "
@@ -91,16 +91,24 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
   EXPECT_GT(mean_ratio, 0.5);
   EXPECT_LT(mean_ratio, 2.0);
 
+  // 1/4 sample per pixel (one at 20x15, upscaled; 40x30 does not divide by 4), then 1, 2, 4.
   const nlohmann::json& curve = doc["path_tracing"];
-  ASSERT_EQ(curve.size(), 3u);
+  ASSERT_EQ(curve.size(), 4u);
+  EXPECT_EQ(curve[0]["spp"], 1u);
+  EXPECT_EQ(curve[0]["downscale"], 2u);
+  EXPECT_EQ(curve[0]["samples_per_pixel"], 0.25);
   for (size_t i = 0; i < curve.size(); ++i) {
-    EXPECT_EQ(curve[i]["spp"], 1u << i);
+    if (i > 0) {
+      EXPECT_EQ(curve[i]["spp"], 1u << (i - 1));
+      EXPECT_EQ(curve[i]["downscale"], 1u);
+    }
     EXPECT_GT(curve[i]["ms"].get<double>(), 0.0);
-    std::printf("path tracing %u spp: FLIP %.3f\n", curve[i]["spp"].get<unsigned>(),
+    std::printf("path tracing %.2f spp: FLIP %.3f\n", curve[i]["samples_per_pixel"].get<double>(),
                 curve[i]["full"]["flip"].get<double>());
   }
   // More samples, less error: the curve is a measurement, not a constant.
-  EXPECT_LT(curve[2]["full"]["flip"].get<double>(), curve[0]["full"]["flip"].get<double>());
+  EXPECT_LT(curve[3]["full"]["flip"].get<double>(), curve[1]["full"]["flip"].get<double>());
+  EXPECT_LT(curve[3]["full"]["flip"].get<double>(), curve[0]["full"]["flip"].get<double>());
 
   // The front is one: ascending time, descending FLIP, and every configuration off it is
   // beaten on both axes by a point on it.
@@ -125,7 +133,7 @@ TEST_F(ParetoCliTest, WritesConfigurationsCurveFrontAndPlot) {
   const std::string svg = slurp(dir_ / "out" / "cornell_box.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
   for (const char* text :
-       {"Pareto front", "path tracing (spp)", "16 rays", "small maps", "sh probes"}) {
+       {"Pareto front", "path tracing (spp)", "16 rays", "small maps", "sh probes", ">1/4<"}) {
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   }
   // The PNG beside it draws the three series in their colours (first, second, third of
