@@ -125,6 +125,19 @@ TEST(PlotRaster, TextSitsOnItsAnchorAndReadsUpwardsWhenVertical) {
   EXPECT_LT(one.pixels * 3, eight.pixels * 2) << one.pixels << " vs " << eight.pixels;  // 113, 185
 }
 
+// Labels are UTF-8: a multi-byte letter is one glyph (ink of its own), a malformed byte one
+// replacement glyph, never a read past the text.
+TEST(PlotRaster, Utf8LabelsAreSetGlyphByGlyph) {
+  const PlotColour black{0, 0, 0};
+  const Ink plain = ink_of(draw_text({50, 100, "1.5 s", 32, TextAnchor::kStart, black}));
+  const Ink micro = ink_of(draw_text({50, 100, "1.5 \u00b5s", 32, TextAnchor::kStart, black}));
+  EXPECT_GT(micro.pixels, plain.pixels);
+  EXPECT_GT(micro.x1 - micro.x0, plain.x1 - plain.x0 + 10);  // one more glyph, 32 px
+  const Ink broken = ink_of(draw_text({50, 100, "a\xff", 32, TextAnchor::kStart, black}));
+  const Ink a = ink_of(draw_text({50, 100, "a", 32, TextAnchor::kStart, black}));
+  EXPECT_GT(broken.pixels, a.pixels);  // the replacement glyph drawn after "a"
+}
+
 TEST(PlotRaster, AMissingFontIsRefusedByName) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: the font is loaded once
   EXPECT_EXIT(
