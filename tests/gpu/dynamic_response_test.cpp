@@ -117,5 +117,23 @@ TEST(DynamicResponseCli, LowHysteresisSettlesSoonerAfterALightMove) {
   std::filesystem::remove_all(dir);
 }
 
+// The response flags' ranges, refused by name before any GPU work.
+TEST(DynamicResponseCli, BadResponseFlagsAreRefusedByName) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ddgi-dynamic-bad-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const char* flag : {"--response-static -1", "--response-static 100001",
+                           "--response-static many", "--response-frames 4"}) {
+    const CliRun run =
+        run_cli(DDGI_EVAL_EXE,
+                std::string("scenes/cornell_box.gltf --dynamic light:0:0,0.1,0 ") + flag, dir);
+    EXPECT_NE(run.exit_code, 0) << flag;
+    const std::string name = std::string(flag).substr(2, std::string(flag).find(' ') - 2);
+    EXPECT_NE(run.err.find(name), std::string::npos) << flag << ": " << run.err;
+    EXPECT_EQ(run.out.find("| cornell_box |"), std::string::npos) << flag;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ddgi::test
