@@ -196,9 +196,8 @@ Result<tools::PathTracePoint> path_trace_point(PathTracer& tracer, const EvalJob
 
 // The equal-time baseline: the path tracer at 1/16 and 1/4 sample per pixel (one sample at a
 // quarter and at half the frame's size each way, where that divides it into at least 8 pixels
-// each way, upscaled: a
-// path tracer's only way to take less time than one sample per pixel), then at 1, 2, 4, ...
-// job.pt_max_spp.
+// each way, upscaled: a path tracer's only way to take less time than one sample per pixel),
+// then at 1, 2, 4, ... job.pt_max_spp.
 Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context,
                                                             const EvalJob& job, const Scene& scene,
                                                             const ReferencePair& refs) {
