@@ -65,9 +65,9 @@ std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& poin
 // measured points whose FLIPs bracket it; nothing when none do.
 std::optional<double> path_trace_ms_for(const std::vector<PathTracePoint>& points, double flip);
 
-// DIR/SCENE.json, DIR/SCENE.svg and DIR/SCENE.png (DIR must exist). The JSON holds every point, the front and,
-// per front point, its FLIP over the path tracer's at the same time and the path tracer's ms
-// for the same FLIP.
+// DIR/SCENE.json, DIR/SCENE.svg and DIR/SCENE.png (DIR must exist). The JSON holds every point, the
+// front and, per front point, its FLIP over the path tracer's at the same time and the path
+// tracer's ms for the same FLIP.
 Status write_scene_trade(const SceneTrade& trade, const std::string& dir);
 
 }  // namespace ddgi::tools
