@@ -67,10 +67,7 @@ void write_item(std::ostringstream& svg, const PlotText& t) {
       << hex(t.colour) << "\">" << escape(t.text) << "</text>\n";
 }
 
-}  // namespace
-
-std::string scatter_plot_svg(const ScatterPlot& plot) {
-  const PlotDrawing drawing = lay_out_scatter_plot(plot);
+std::string drawing_svg(const PlotDrawing& drawing) {
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << drawing.width << "\" height=\""
       << drawing.height << "\" font-family=\"" << kPlotFontFamily << ", sans-serif\">\n"
@@ -82,9 +79,16 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
   return svg.str();
 }
 
+}  // namespace
+
+std::string scatter_plot_svg(const ScatterPlot& plot) {
+  return drawing_svg(lay_out_scatter_plot(plot));
+}
+
 Status write_scatter_plot(const std::string& stem, const ScatterPlot& plot) {
-  DDGI_TRY(write_text_file(stem + ".svg", scatter_plot_svg(plot)));
-  DDGI_ASSIGN_OR_RETURN(const encode::ImageRgba8 image, scatter_plot_image(plot));
+  const PlotDrawing drawing = lay_out_scatter_plot(plot);  // one layout for both files
+  DDGI_TRY(write_text_file(stem + ".svg", drawing_svg(drawing)));
+  DDGI_ASSIGN_OR_RETURN(const encode::ImageRgba8 image, rasterize_plot(drawing));
   return encode::write_image(stem + ".png", image);
 }
 
