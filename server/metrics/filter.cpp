@@ -1,7 +1,11 @@
+// Separable convolution for SSIM and FLIP, rows split over the metrics pool (metrics/parallel.h).
 #include "metrics/filter.h"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+
+#include "metrics/parallel.h"
 
 namespace ddgi::metrics {
 
@@ -22,6 +26,14 @@ int clamp_index(int i, uint32_t size) {
   return std::clamp(i, 0, static_cast<int>(size) - 1);
 }
 
+// Runs row(y) for every y < height, in bands of rows spread over the metrics pool.
+void for_each_row(uint32_t height, const std::function<void(uint32_t)>& row) {
+  constexpr size_t kRowsPerBand = 16;  // enough work per band to hide the pool's hand-off
+  for_each_chunk(height, kRowsPerBand, [&](size_t begin, size_t end) {
+    for (size_t y = begin; y < end; ++y) row(static_cast<uint32_t>(y));
+  });
+}
+
 }  // namespace
 
 Plane convolve_separable(const Plane& input, const Kernel1D& horizontal, const Kernel1D& vertical) {
@@ -29,7 +41,7 @@ Plane convolve_separable(const Plane& input, const Kernel1D& horizontal, const K
   const uint32_t height = input.height;
   Plane rows(width, height);
   const int rh = horizontal.radius();
-  for (uint32_t y = 0; y < height; ++y) {
+  for_each_row(height, [&](uint32_t y) {
     for (uint32_t x = 0; x < width; ++x) {
       double sum = 0.0;
       for (int k = -rh; k <= rh; ++k) {
@@ -38,10 +50,10 @@ Plane convolve_separable(const Plane& input, const Kernel1D& horizontal, const K
       }
       rows.at(x, y) = sum;
     }
-  }
+  });
   Plane out(width, height);
   const int rv = vertical.radius();
-  for (uint32_t y = 0; y < height; ++y) {
+  for_each_row(height, [&](uint32_t y) {
     for (uint32_t x = 0; x < width; ++x) {
       double sum = 0.0;
       for (int k = -rv; k <= rv; ++k) {
@@ -50,7 +62,7 @@ Plane convolve_separable(const Plane& input, const Kernel1D& horizontal, const K
       }
       out.at(x, y) = sum;
     }
-  }
+  });
   return out;
 }
 

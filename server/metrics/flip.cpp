@@ -5,11 +5,13 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "metrics/color.h"
 #include "metrics/filter.h"
 #include "metrics/flip_csf.h"
 #include "metrics/flip_features.h"
+#include "metrics/parallel.h"
 
 namespace ddgi::metrics {
 
@@ -22,6 +24,8 @@ constexpr double kPc = 0.4;
 constexpr double kPt = 0.95;
 constexpr double kQf = 0.5;
 
+constexpr size_t kPixelsPerChunk = 16384;  // per-pixel loops' share of work per pool task
+
 // The three YCxCz planes of an image.
 using Opponent = std::array<Plane, 3>;
 
@@ -29,15 +33,17 @@ Opponent to_opponent(const RgbImageView& image) {
   Opponent out;
   for (Plane& plane : out) plane = Plane(image.width, image.height);
   const size_t count = size_t{image.width} * image.height;
-  for (size_t i = 0; i < count; ++i) {
-    const auto linear = [&](size_t c) {
-      return srgb_to_linear(std::clamp(double{image.rgb[i * 3 + c]}, 0.0, 1.0));
-    };
-    const Color3 ycxcz = xyz_to_ycxcz(linear_rgb_to_xyz({linear(0), linear(1), linear(2)}));
-    out[0].values[i] = ycxcz.c0;
-    out[1].values[i] = ycxcz.c1;
-    out[2].values[i] = ycxcz.c2;
-  }
+  for_each_chunk(count, kPixelsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const auto linear = [&](size_t c) {
+        return srgb_to_linear(std::clamp(double{image.rgb[i * 3 + c]}, 0.0, 1.0));
+      };
+      const Color3 ycxcz = xyz_to_ycxcz(linear_rgb_to_xyz({linear(0), linear(1), linear(2)}));
+      out[0].values[i] = ycxcz.c0;
+      out[1].values[i] = ycxcz.c1;
+      out[2].values[i] = ycxcz.c2;
+    }
+  });
   return out;
 }
 
@@ -51,13 +57,15 @@ Opponent csf_filter_all(const Opponent& input, double ppd) {
 std::vector<Color3> to_hunt_lab(const Opponent& filtered) {
   const size_t count = filtered[0].values.size();
   std::vector<Color3> out(count);
-  for (size_t i = 0; i < count; ++i) {
-    const Color3 ycxcz{filtered[0].values[i], filtered[1].values[i], filtered[2].values[i]};
-    const Color3 rgb = xyz_to_linear_rgb(ycxcz_to_xyz(ycxcz));
-    const Color3 clamped{std::clamp(rgb.c0, 0.0, 1.0), std::clamp(rgb.c1, 0.0, 1.0),
-                         std::clamp(rgb.c2, 0.0, 1.0)};
-    out[i] = hunt_adjust(xyz_to_lab(linear_rgb_to_xyz(clamped)));
-  }
+  for_each_chunk(count, kPixelsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const Color3 ycxcz{filtered[0].values[i], filtered[1].values[i], filtered[2].values[i]};
+      const Color3 rgb = xyz_to_linear_rgb(ycxcz_to_xyz(ycxcz));
+      const Color3 clamped{std::clamp(rgb.c0, 0.0, 1.0), std::clamp(rgb.c1, 0.0, 1.0),
+                           std::clamp(rgb.c2, 0.0, 1.0)};
+      out[i] = hunt_adjust(xyz_to_lab(linear_rgb_to_xyz(clamped)));
+    }
+  });
   return out;
 }
 
@@ -118,21 +126,30 @@ Result<FlipResult> flip(const RgbImageView& reference, const RgbImageView& test,
 
   const double cmax = max_color_difference();
   FlipResult result{reference.width, reference.height, {}, 0.0};
-  result.error_map.resize(ref_lab.size());
+  const size_t count = ref_lab.size();
+  result.error_map.resize(count);
+  // Per-chunk sums added in chunk order: the mean does not depend on the thread count.
+  std::vector<double> chunk_sums((count + kPixelsPerChunk - 1) / kPixelsPerChunk, 0.0);
+  for_each_chunk(count, kPixelsPerChunk, [&](size_t begin, size_t end) {
+    double sum = 0.0;
+    for (size_t i = begin; i < end; ++i) {
+      const double color = remap_color_difference(hyab(ref_lab[i], test_lab[i]), cmax);
+      const double edge_diff =
+          std::abs(ref_features.edges.values[i] - test_features.edges.values[i]);
+      const double point_diff =
+          std::abs(ref_features.points.values[i] - test_features.points.values[i]);
+      const double feature =
+          std::min(1.0, std::pow(std::max(edge_diff, point_diff) / std::numbers::sqrt2, kQf));
+      // Feature differences amplify the colour error: the exponent shrinks towards 0.
+      const double error = std::pow(color, 1.0 - feature);
+      result.error_map[i] = static_cast<float>(error);
+      sum += error;
+    }
+    chunk_sums[begin / kPixelsPerChunk] = sum;
+  });
   double sum = 0.0;
-  for (size_t i = 0; i < ref_lab.size(); ++i) {
-    const double color = remap_color_difference(hyab(ref_lab[i], test_lab[i]), cmax);
-    const double edge_diff = std::abs(ref_features.edges.values[i] - test_features.edges.values[i]);
-    const double point_diff =
-        std::abs(ref_features.points.values[i] - test_features.points.values[i]);
-    const double feature =
-        std::min(1.0, std::pow(std::max(edge_diff, point_diff) / std::numbers::sqrt2, kQf));
-    // Feature differences amplify the colour error: the exponent shrinks towards 0.
-    const double error = std::pow(color, 1.0 - feature);
-    result.error_map[i] = static_cast<float>(error);
-    sum += error;
-  }
-  result.mean = sum / static_cast<double>(ref_lab.size());
+  for (double chunk_sum : chunk_sums) sum += chunk_sum;
+  result.mean = sum / static_cast<double>(count);
   return result;
 }
 

@@ -380,27 +380,48 @@ Status run_dynamic(vk::Context& context, const EvalJob& job,
   return ok_status();
 }
 
+std::string optional_text(std::optional<double> value) {
+  char buffer[32] = "-";
+  if (value) std::snprintf(buffer, sizeof(buffer), "%.4g", *value);
+  return buffer;
+}
+
+std::optional<double> ratio_of(std::optional<double> a, std::optional<double> b) {
+  return a && b && *b > 0.0 ? std::optional<double>(*a / *b) : std::nullopt;
+}
+
 // After the table: per scene, each front point against the path tracer: its FLIP at the same
 // ms, and the ms it needs for the same FLIP ("-": outside the traced spp range).
 void print_fronts(const std::vector<tools::SceneTrade>& trades) {
   std::printf(
       "\n| scene | front point | GPU ms | FLIP | path tracing FLIP, same ms | ratio | path "
       "tracing ms, same FLIP |\n|---|---|---|---|---|---|---|\n");
-  auto text = [](std::optional<double> value) {
-    char buffer[32] = "-";
-    if (value) std::snprintf(buffer, sizeof(buffer), "%.4g", *value);
-    return std::string(buffer);
-  };
   for (const tools::SceneTrade& trade : trades) {
     for (size_t i : tools::pareto_front(trade.configs)) {
       const tools::ConfigPoint& c = trade.configs[i];
       const std::optional<double> traced =
           tools::path_trace_flip_at(trade.path_tracing, c.total_ms());
-      const std::optional<double> ratio =
-          traced && *traced > 0.0 ? std::optional<double>(c.full.flip / *traced) : std::nullopt;
       std::printf("| %s | %s | %.3f | %.4f | %s | %s | %s |\n", trade.scene.c_str(), c.name.c_str(),
-                  c.total_ms(), c.full.flip, text(traced).c_str(), text(ratio).c_str(),
-                  text(tools::path_trace_ms_for(trade.path_tracing, c.full.flip)).c_str());
+                  c.total_ms(), c.full.flip, optional_text(traced).c_str(),
+                  optional_text(ratio_of(c.full.flip, traced)).c_str(),
+                  optional_text(tools::path_trace_ms_for(trade.path_tracing, c.full.flip)).c_str());
+    }
+  }
+}
+
+// The figure: at 1, 2 and 5 ms per frame, the best configuration within the time over
+// the path tracer at that time.
+void print_equal_time(const std::vector<tools::SceneTrade>& trades) {
+  std::printf(
+      "\n| scene | ms | best DDGI FLIP within | path tracing FLIP at ms | DDGI / path tracing "
+      "|\n|---|---|---|---|---|\n");
+  for (const tools::SceneTrade& trade : trades) {
+    for (double ms : tools::kEqualTimeReportMs) {
+      const std::optional<double> ddgi = tools::best_flip_within(trade.configs, ms);
+      const std::optional<double> traced = tools::path_trace_flip_at(trade.path_tracing, ms);
+      std::printf("| %s | %g | %s | %s | %s |\n", trade.scene.c_str(), ms,
+                  optional_text(ddgi).c_str(), optional_text(traced).c_str(),
+                  optional_text(ratio_of(ddgi, traced)).c_str());
     }
   }
 }
@@ -461,7 +482,10 @@ Status run(int argc, char** argv) {
     DDGI_TRY(tools::write_scene_trade(trade, job.pareto_dir));
     trades.push_back(std::move(trade));
   }
-  if (!trades.empty()) print_fronts(trades);
+  if (!trades.empty()) {
+    print_fronts(trades);
+    print_equal_time(trades);
+  }
   if (!budget_rows.empty()) tools::print_budget_table(budget_rows);
   return ok_status();
 }

@@ -75,6 +75,14 @@ std::vector<size_t> pareto_front(const std::vector<ConfigPoint>& configs) {
   return front;
 }
 
+std::optional<double> best_flip_within(const std::vector<ConfigPoint>& configs, double ms) {
+  std::optional<double> best;
+  for (const ConfigPoint& c : configs) {
+    if (c.total_ms() <= ms && (!best || c.full.flip < *best)) best = c.full.flip;
+  }
+  return best;
+}
+
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms) {
   for (size_t i = 0; i + 1 < points.size(); ++i) {
     const PathTracePoint &a = points[i], &b = points[i + 1];
@@ -126,6 +134,17 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
     const std::optional<double> match = path_trace_ms_for(trade.path_tracing, c.full.flip);
     entry["path_trace_ms_same_flip"] = match ? json(*match) : json(nullptr);
     doc["front"].push_back(entry);
+  }
+  doc["equal_time"] = json::array();
+  for (double ms : kEqualTimeReportMs) {
+    const std::optional<double> ddgi = best_flip_within(trade.configs, ms);
+    const std::optional<double> traced = path_trace_flip_at(trade.path_tracing, ms);
+    doc["equal_time"].push_back(
+        {{"ms", ms},
+         {"best_flip_within", ddgi ? json(*ddgi) : json(nullptr)},
+         {"path_trace_flip", traced ? json(*traced) : json(nullptr)},
+         {"flip_over_path_trace",
+          ddgi && traced && *traced > 0.0 ? json(*ddgi / *traced) : json(nullptr)}});
   }
   DDGI_TRY(write_text_file(dir + "/" + trade.scene + ".json", doc.dump(2) + "\n"));
   return write_scatter_plot(dir + "/" + trade.scene, trade_plot(trade, front));

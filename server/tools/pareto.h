@@ -57,6 +57,13 @@ struct SceneTrade {
 // time: indices into `configs`.
 std::vector<size_t> pareto_front(const std::vector<ConfigPoint>& configs);
 
+// The lowest FLIP of a configuration whose total ms is at most `ms`; nothing when none fits.
+std::optional<double> best_flip_within(const std::vector<ConfigPoint>& configs, double ms);
+
+// The times at which the project reports DDGI's FLIP over the path tracer's (issue 14): the best
+// configuration within each against the path tracer at exactly that time.
+inline constexpr double kEqualTimeReportMs[] = {1.0, 2.0, 5.0};
+
 // The path tracer's FLIP at `ms`, interpolated linearly in log(ms) between its measured points;
 // nothing outside their range.
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms);

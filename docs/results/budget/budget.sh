@@ -20,9 +20,11 @@ case $batch in
   2) scenes="scenes/staircase.ddgi.json scenes/modern_hall.ddgi.json scenes/living_room.ddgi.json" ;;
   *) echo "budget.sh: BATCH must be 1 or 2" >&2; exit 2 ;;
 esac
+# A device call ends at 600 s; stopping ddgi-eval a little before keeps what it wrote (the archive
+# below still gets made). Status 124 in the log means it was cut short.
 # shellcheck disable=SC2086  # the scene list is words
-ddgi-eval $scenes --width 1920 --height 1080 --spp 256 --warmup 64 --frames 9 \
+timeout "${BUDGET_TIMEOUT_S:-575}" ddgi-eval $scenes --width 1920 --height 1080 --spp 256 --warmup 64 --frames 9 \
   --backend pipeline --budgets 1,2,4,8 --pareto "$out/pareto-$batch" --pt-max-spp 8 2>&1 |
-  tee "$out/budget-$batch.txt"
+  tee "$out/budget-$batch.txt" || echo "ddgi-eval exited with status ${PIPESTATUS[0]}" | tee -a "$out/budget-$batch.txt"
 # Only 8 files come back from a device run: the per-scene JSON and plots travel as one archive.
 tar czf "$out/pareto-$batch.tgz" -C "$out" "pareto-$batch" && rm -rf "${out:?}/pareto-$batch"
