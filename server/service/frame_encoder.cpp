@@ -24,11 +24,12 @@ FrameEncoder::~FrameEncoder() {
 }
 
 void FrameEncoder::submit(std::unique_ptr<EncodeJob> job) {
+  // A queued job this one replaces is counted as dropped by its streams when this one arrives.
+  for (auto& stream : job->streams) stream->expect(job->frame.frame_index());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& queued : queue_) {
       if (queued->view_key != job->view_key) continue;
-      for (auto& stream : queued->streams) stream->count_drop();
       job->waiters.insert(job->waiters.begin(), std::make_move_iterator(queued->waiters.begin()),
                           std::make_move_iterator(queued->waiters.end()));
       queued = std::move(job);

@@ -1,6 +1,12 @@
+// One StreamFrames call's state and reactor (service/frame_stream.h).
 #include "service/frame_stream.h"
 
 namespace ddgi::service {
+
+void FrameStreamState::expect(uint64_t frame_index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!finish_requested_ && !finished_) expected_.push_back(frame_index);
+}
 
 void FrameStreamState::offer(const std::shared_ptr<const v1::Frame>& frame) {
   Action action;
@@ -10,6 +16,14 @@ void FrameStreamState::offer(const std::shared_ptr<const v1::Frame>& frame) {
     // Encoder threads may finish frames out of order: never send an older one.
     if (frame->frame_index() <= last_index_) return;
     last_index_ = frame->frame_index();
+    // Older frames still expected will never be sent: dropped before this one.
+    while (!expected_.empty() && expected_.front() <= last_index_) {
+      if (expected_.front() < last_index_) {
+        ++dropped_;
+        metrics_.frames_dropped.fetch_add(1);
+      }
+      expected_.pop_front();
+    }
     if (slot_ && in_flight_) {  // the client has not taken the previous one: it is stale
       ++dropped_;
       metrics_.frames_dropped.fetch_add(1);
@@ -18,13 +32,6 @@ void FrameStreamState::offer(const std::shared_ptr<const v1::Frame>& frame) {
     action = next_action_locked();
   }
   act(action);
-}
-
-void FrameStreamState::count_drop() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (finished_) return;
-  ++dropped_;
-  metrics_.frames_dropped.fetch_add(1);
 }
 
 void FrameStreamState::finish(const grpc::Status& status) {

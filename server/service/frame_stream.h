@@ -7,6 +7,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -24,10 +25,14 @@ class FrameStreamState {
  public:
   FrameStreamState(Metrics& metrics, double max_fps) : metrics_(metrics), max_fps_(max_fps) {}
 
+  // A frame with this index is on its way to offer() (called in index order, when the frame
+  // is handed to the encoder). An expected index older than an offered frame was dropped on
+  // the way (replaced in the encoder's queue, or finished after a newer one), and the offered
+  // frame is the first to count it: so frames_dropped grows by exactly the indices a client
+  // sees skipped, whatever order the encoder threads finish in.
+  void expect(uint64_t frame_index);
   // A new frame for this stream (any thread).
   void offer(const std::shared_ptr<const v1::Frame>& frame);
-  // A frame meant for this stream was dropped before it reached offer().
-  void count_drop();
   // Ends the stream with `status` once the write in flight (if any) is done. Only the first
   // call counts.
   void finish(const grpc::Status& status);
@@ -53,7 +58,8 @@ class FrameStreamState {
   std::shared_ptr<const v1::Frame> slot_;
   v1::Frame writing_;  // the message in flight: the frame plus this stream's drop count
   uint64_t dropped_ = 0;
-  uint64_t last_index_ = 0;  // frame indices start at 1
+  std::deque<uint64_t> expected_;  // ascending indices handed to the encoder, not yet offered
+  uint64_t last_index_ = 0;        // frame indices start at 1
   std::chrono::steady_clock::time_point last_write_{};
 };
 

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "service/convert.h"
+#include "service/frame_stream.h"
 #include "service/limits.h"
 #include "service/metrics.h"
 #include "service/scene_library.h"
@@ -126,6 +127,31 @@ TEST(MetricsTest, PrometheusTextFormat) {
   EXPECT_NE(text.find("ddgi_encode_seconds_count 2\n"), std::string::npos);
   EXPECT_NE(text.find("ddgi_rpcs_total{method=\"SetCamera\",code=\"OK\"} 1\n"), std::string::npos);
   EXPECT_NE(text.find("ddgi_test_gauge 7\n"), std::string::npos);
+}
+
+std::shared_ptr<const v1::Frame> frame_with_index(uint64_t index) {
+  auto frame = std::make_shared<v1::Frame>();
+  frame->set_frame_index(index);
+  return frame;
+}
+
+// A stream counts a frame as dropped when a newer one reaches it, not when the encoder drops it:
+// the frame before the gap must not carry the drop (the CI failure of 2026-12-05: frame 28 said
+// one more drop than 27 with no index between them, frame 30 one less than the gap 28 -> 30).
+// A frame that finishes after a newer one was sent is dropped once, not twice.
+TEST(FrameStreamTest, DropsCountWhenTheNextFrameArrives) {
+  service::Metrics metrics;
+  service::FrameStreamState stream(metrics, 0.0);
+  for (uint64_t index : {27, 28, 29, 30, 31, 32}) stream.expect(index);
+  stream.offer(frame_with_index(27));
+  stream.offer(frame_with_index(28));
+  EXPECT_EQ(stream.dropped(), 0u);  // 29 was replaced in the encoder's queue by 30: not yet seen
+  stream.offer(frame_with_index(30));
+  EXPECT_EQ(stream.dropped(), 1u);  // 29: skipped before 30
+  stream.offer(frame_with_index(32));
+  stream.offer(frame_with_index(31));  // an encoder thread finished it after 32: never sent
+  EXPECT_EQ(stream.dropped(), 2u);
+  EXPECT_EQ(metrics.frames_dropped.load(), 2u);
 }
 
 TEST(TextTest, ClientTextIsEscapedAndCut) {
