@@ -304,11 +304,33 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
   return base;
 }
 
+namespace {
+
+// The default grid: fitted to the whole scene, unless that spaces its probes wider than the
+// objects standing on a ground plane are large (lights_punctual: one layer 4.6 m apart over a
+// 157 m plane, none near its 2 m cube; its indirect view came out at 0.12 of the reference).
+// Then it covers the objects and the ground within their own extent around them. A ground the
+// whole grid still resolves keeps it (box_on_floor: 0.5 m over an 8 m floor, a 1 m box).
+IrradianceFieldParams fit_default_grid(const Scene& scene) {
+  const Bounds world = scene.world_bounds();
+  IrradianceFieldParams whole = fit_grid_to_bounds(world);
+  const Bounds objects = scene.bounds_without_ground();
+  const glm::vec3 extent = objects.extent();
+  const float reach = std::max({extent.x, extent.y, extent.z});
+  const float spacing = std::max({whole.spacing.x, whole.spacing.y, whole.spacing.z});
+  if (objects.empty() || !(spacing > reach)) return whole;
+  const Bounds near{glm::max(world.min, objects.min - glm::vec3(reach)),
+                    glm::min(world.max, objects.max + glm::vec3(reach))};
+  return fit_grid_to_bounds(near);
+}
+
+}  // namespace
+
 IrradianceFieldParams default_field_params(const Scene& scene) {
   static_assert(kMaxSceneProbeVolumes + 1 == gpu::kMaxFieldVolumes);
   IrradianceFieldParams params = scene.probe_grid
                                      ? placed(IrradianceFieldParams{}, *scene.probe_grid)
-                                     : fit_grid_to_bounds(scene.world_bounds());
+                                     : fit_default_grid(scene);
   params.static_volumes = scene.probe_volumes;
   if (scene.has_emissive_surfaces()) params.emitter_samples = kSceneEmitterSamples;
   return params;

@@ -222,7 +222,8 @@ IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_p
 inline constexpr uint32_t kSceneEmitterSamples = 2;
 
 // What a user gets without setting anything: the grid the scene asks for (sidecar
-// `probe_grid`), else one fitted to its bounds, the sidecar's static volumes, and emitter
+// `probe_grid`), else one fitted to its bounds (objects on a far-reaching ground plane: to them
+// and the ground around them), the sidecar's static volumes, and emitter
 // sampling where the scene has emissive surfaces.
 IrradianceFieldParams default_field_params(const Scene& scene);
 

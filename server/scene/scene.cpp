@@ -1,5 +1,7 @@
+// The scene's value-type helpers: a look-at camera, bounds, and what lights it.
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ddgi {
@@ -17,6 +19,33 @@ Bounds object_bounds(const Mesh& mesh) {
   }
   return bounds;
 }
+
+Bounds transformed_box(const Bounds& box, const glm::mat4& transform) {
+  Bounds out;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                      (corner & 4) ? box.max.z : box.min.z);
+    out.grow(glm::vec3(transform * glm::vec4(p, 1.0f)));
+  }
+  return out;
+}
+
+void grow_bounds(Bounds& bounds, const Bounds& other) {
+  if (other.empty()) return;
+  bounds.grow(other.min);
+  bounds.grow(other.max);
+}
+
+// Flat: thinner than 1% of its largest side along some axis (a plane, a wall, a floor).
+bool is_flat(const Bounds& box) {
+  const glm::vec3 e = box.extent();
+  const float largest = std::max({e.x, e.y, e.z});
+  return largest > 0.0f && std::min({e.x, e.y, e.z}) < 0.01f * largest;
+}
+
+// A flat instance reaching this many times further than everything else (on its largest side)
+// is a ground plane under the scene rather than part of it.
+constexpr float kGroundReach = 4.0f;
 
 }  // namespace
 
@@ -71,6 +100,34 @@ Bounds Scene::world_bounds() const {
     }
   }
   return bounds;
+}
+
+Bounds Scene::bounds_without_ground() const {
+  std::vector<Bounds> boxes;
+  for (const Instance& instance : instances) {
+    if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;
+    boxes.push_back(transformed_box(object_bounds(meshes[static_cast<size_t>(instance.mesh)]),
+                                    instance.transform));
+  }
+  Bounds solid;  // everything but the flat instances
+  for (const Bounds& box : boxes) {
+    if (!is_flat(box)) grow_bounds(solid, box);
+  }
+  const glm::vec3 solid_extent = solid.extent();
+  const float reach = std::max({solid_extent.x, solid_extent.y, solid_extent.z});
+  if (!(reach > 0.0f)) return world_bounds();
+  Bounds out = solid;
+  bool ground = false;
+  for (const Bounds& box : boxes) {
+    if (!is_flat(box)) continue;
+    const glm::vec3 e = box.extent();
+    if (std::max({e.x, e.y, e.z}) > kGroundReach * reach) {
+      ground = true;
+    } else {
+      grow_bounds(out, box);  // a wall, a floor of the scene's size
+    }
+  }
+  return ground ? out : world_bounds();
 }
 
 bool Scene::has_any_light() const {

@@ -164,6 +164,10 @@ struct Scene {
   // beyond that (heavy instancing), the union of each instance's transformed mesh box, which
   // may be slightly larger.
   Bounds world_bounds() const;
+  // world_bounds() without ground planes: flat instances reaching more than 4x further than
+  // everything that is not flat (a 157 m plane under a 2 m cube); world_bounds() when there is
+  // none. The default probe grid uses it (default_field_params).
+  Bounds bounds_without_ground() const;
   // True when something emits light: a light, an emissive material in use, or the environment.
   bool has_any_light() const;
   // True when an emissive material is in use by a placed primitive (area light the probes and

@@ -223,6 +223,43 @@ TEST(FieldParams, EmissiveScenesSampleTheirEmittersByDefault) {
   EXPECT_EQ(p.emitter_samples, 0u);
 }
 
+// A scene of a cube (side `cube`, on y 0 .. cube) on a square ground plane of side `ground`.
+Scene cube_on_ground(float cube, float ground) {
+  Scene scene;
+  scene.materials.push_back(Material{});
+  Primitive box;
+  box.positions = {{-cube / 2, 0, -cube / 2}, {cube / 2, cube, cube / 2}, {cube / 2, 0, -cube / 2}};
+  box.indices = {0, 1, 2};
+  Primitive plane;
+  plane.positions = {
+      {-ground / 2, 0, -ground / 2}, {ground / 2, 0, ground / 2}, {ground / 2, 0, -ground / 2}};
+  plane.indices = {0, 1, 2};
+  scene.meshes.push_back(Mesh{"cube", {box}});
+  scene.meshes.push_back(Mesh{"ground", {plane}});
+  scene.instances.push_back(Instance{"cube", 0, 0});
+  scene.instances.push_back(Instance{"ground", 1, 1});
+  return scene;
+}
+
+// The default grid skips a ground plane only where fitting the whole would space probes wider
+// than the objects on it are large: lights_punctual's proportions (a 2 m cube on 157 m; the whole
+// gives 4.6 m) get a grid over the cube and 2 m of ground around it, box_on_floor's (1 m on 8 m;
+// the whole gives 0.5 m) keep the whole floor. Planted: the spacing test inverted fails both.
+TEST(FieldParams, DefaultGridSkipsOnlyAGroundItCannotResolve) {
+  const IrradianceFieldParams far = default_field_params(cube_on_ground(2.0f, 157.0f));
+  const glm::vec3 far_last = far.origin + far.spacing * (glm::vec3(far.counts) - 1.0f);
+  EXPECT_NEAR(far.origin.x - far.spacing.x / 2, -3.0f, 1e-4f);  // cell-centred over -3 .. 3
+  EXPECT_NEAR(far_last.x + far.spacing.x / 2, 3.0f, 1e-4f);
+  EXPECT_LT(far.spacing.x, 1.0f);
+  EXPECT_GE(far.counts.y, 2);  // layers between the ground and the cube's top
+  const IrradianceFieldParams near = default_field_params(cube_on_ground(1.0f, 8.0f));
+  Bounds floor;
+  floor.grow({-4, 0, -4});
+  floor.grow({4, 1, 4});
+  EXPECT_EQ(near, fit_grid_to_bounds(floor));
+  EXPECT_NEAR(near.spacing.x, 0.5f, 1e-4f);
+}
+
 TEST(FieldParams, FittedGridIsCellCentredInsideTheBounds) {
   Bounds b;
   b.grow({-1, 0, -1});

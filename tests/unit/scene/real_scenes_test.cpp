@@ -143,5 +143,27 @@ TEST(RealScenes, LivingRoom) {
   EXPECT_FALSE(scene.has_any_light());
 }
 
+// Ground planes (Scene::bounds_without_ground): a flat instance reaching more than 4x further
+// than everything not flat. lights_punctual's 157 m plane goes, leaving its 2 m cube (y -0.02 ..
+// 1.98 after the node's lift); box_on_floor's 8 m floor under a 1 m box goes too (the default
+// grid still keeps it: FieldParams.DefaultGridSkipsOnlyAGroundItCannotResolve). The Cornell
+// box's walls are flat but the scene's own size: nothing goes.
+TEST(RealScenes, BoundsWithoutGroundLeaveOutOnlyFarReachingPlanes) {
+  LOAD_SHARED_SCENE(lights, "LightsPunctualTest/gltf_KHR_lights_punctual_test.glb");
+  const Bounds cube = lights.bounds_without_ground();
+  EXPECT_TRUE(near(cube.min, glm::vec3(-1.0f, -0.019f, -1.0f), 0.01f));
+  EXPECT_TRUE(near(cube.max, glm::vec3(1.0f, 1.981f, 1.0f), 0.01f));
+  EXPECT_GT(lights.world_bounds().extent().x, 150.0f);  // control: the plane is in the scene
+
+  Result<Scene> box = load_scene(std::string(DDGI_REPO_SCENES_DIR) + "/box_on_floor.gltf");
+  ASSERT_TRUE(box.ok()) << box.error().message;
+  EXPECT_TRUE(near(box->bounds_without_ground().min, glm::vec3(-0.5f, 0.0f, -0.5f), 1e-6f));
+  EXPECT_TRUE(near(box->bounds_without_ground().max, glm::vec3(0.5f, 1.0f, 0.5f), 1e-6f));
+
+  LOAD_SHARED_SCENE(cornell, "CornellBox/scene.gltf");
+  EXPECT_TRUE(near(cornell.bounds_without_ground().min, cornell.world_bounds().min, 0.0f));
+  EXPECT_TRUE(near(cornell.bounds_without_ground().max, cornell.world_bounds().max, 0.0f));
+}
+
 }  // namespace
 }  // namespace ddgi
