@@ -20,8 +20,10 @@ Bounds object_bounds(const Mesh& mesh) {
   return bounds;
 }
 
+// The box around `box`'s eight corners after `transform` (empty stays empty).
 Bounds transformed_box(const Bounds& box, const glm::mat4& transform) {
   Bounds out;
+  if (box.empty()) return out;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
                       (corner & 4) ? box.max.z : box.min.z);
@@ -91,23 +93,20 @@ Bounds Scene::world_bounds() const {
         }
       }
     } else if (!mesh_bounds[m].empty()) {
-      for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? mesh_bounds[m].max.x : mesh_bounds[m].min.x,
-                          (corner & 2) ? mesh_bounds[m].max.y : mesh_bounds[m].min.y,
-                          (corner & 4) ? mesh_bounds[m].max.z : mesh_bounds[m].min.z);
-        bounds.grow(glm::vec3(instance.transform * glm::vec4(p, 1.0f)));
-      }
+      grow_bounds(bounds, transformed_box(mesh_bounds[m], instance.transform));
     }
   }
   return bounds;
 }
 
 Bounds Scene::bounds_without_ground() const {
+  std::vector<Bounds> mesh_boxes;  // once per mesh: instancing repeats meshes many times
+  for (const Mesh& mesh : meshes) mesh_boxes.push_back(object_bounds(mesh));
   std::vector<Bounds> boxes;
   for (const Instance& instance : instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;
-    boxes.push_back(transformed_box(object_bounds(meshes[static_cast<size_t>(instance.mesh)]),
-                                    instance.transform));
+    boxes.push_back(
+        transformed_box(mesh_boxes[static_cast<size_t>(instance.mesh)], instance.transform));
   }
   Bounds solid;  // everything but the flat instances
   for (const Bounds& box : boxes) {
