@@ -27,6 +27,8 @@ json config_json(const ConfigPoint& c) {
           {"indirect", scores_json(c.indirect)}};
 }
 
+constexpr size_t kPlotNamesEveryConfigUpTo = 8;
+
 ScatterPlot trade_plot(const SceneTrade& trade, const std::vector<size_t>& front) {
   ScatterPlot plot;
   plot.title = trade.scene + ": error against GPU time (" + std::to_string(trade.width) + "x" +
@@ -36,11 +38,15 @@ ScatterPlot trade_plot(const SceneTrade& trade, const std::vector<size_t>& front
   plot.y_label = "mean FLIP against the reference (lower is better)";
   PlotSeries configs{"DDGI configurations", {}}, best{"Pareto front", {}, true};
   PlotSeries traced{"path tracing (spp)", {}, true};
-  for (const ConfigPoint& c : trade.configs)
-    configs.points.push_back({c.total_ms(), c.full.flip, c.name});
+  // Past a handful of configurations their names overlap into an unreadable block (the H200's
+  // 16-candidate sweeps): then only the front's points are named; the JSON names them all.
+  const bool name_all = trade.configs.size() <= kPlotNamesEveryConfigUpTo;
+  for (const ConfigPoint& c : trade.configs) {
+    configs.points.push_back({c.total_ms(), c.full.flip, name_all ? c.name : ""});
+  }
   for (size_t i : front) {
     const ConfigPoint& c = trade.configs[i];
-    best.points.push_back({c.total_ms(), c.full.flip, ""});
+    best.points.push_back({c.total_ms(), c.full.flip, name_all ? "" : c.name});
   }
   for (const PathTracePoint& p : trade.path_tracing) {
     traced.points.push_back({p.ms, p.full.flip, p.label()});

@@ -66,6 +66,35 @@ TEST(Pareto, BestFlipWithinATime) {
   EXPECT_DOUBLE_EQ(*tools::best_flip_within(configs, 8.0), 0.05);
 }
 
+// A sweep of more than eight configurations names only the front's points on the plot (their
+// names overlapped into a block on the H200's 16-candidate plots); four are all named (below).
+// Planted: names kept on every point fails the absence checks.
+TEST(Pareto, PlotNamesOnlyTheFrontPastEightConfigurations) {
+  tools::SceneTrade trade;
+  trade.scene = "many";
+  trade.width = 64;
+  trade.height = 36;
+  trade.reference_spp = 16;
+  for (int i = 0; i < 10; ++i) {
+    // Two points on the front ("fast 0", "best 9"); the rest slower and worse than "fast 0".
+    const std::string name = i == 0 ? "fast 0" : i == 9 ? "best 9" : "beaten " + std::to_string(i);
+    trade.configs.push_back(
+        point(name.c_str(), i == 0 ? 1.0 : 2.0 + i, i == 9 ? 0.05 : 0.2 + 0.01 * i));
+  }
+  trade.path_tracing = {{1, 1, 4.0, {0, 0, 0.4, 0}}, {2, 1, 8.0, {0, 0, 0.3, 0}}};
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ddgi-plot-names-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  ASSERT_TRUE(tools::write_scene_trade(trade, dir.string()).ok());
+  const std::string svg = slurp(dir / "many.svg");
+  EXPECT_NE(svg.find(">fast 0<"), std::string::npos);
+  EXPECT_NE(svg.find(">best 9<"), std::string::npos);
+  for (int i = 1; i < 9; ++i) {
+    EXPECT_EQ(svg.find(">beaten " + std::to_string(i) + "<"), std::string::npos) << i;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 class ParetoCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
