@@ -1,3 +1,5 @@
+// LDR-FLIP (Andersson et al. 2020; metrics/flip.h): the colour and feature pipelines of both
+// images and their per-pixel combination, the loops on the metrics pool (metrics/parallel.h).
 #include "metrics/flip.h"
 
 #include <algorithm>
