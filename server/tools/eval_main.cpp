@@ -416,12 +416,11 @@ void print_equal_time(const std::vector<tools::SceneTrade>& trades) {
       "\n| scene | ms | best DDGI FLIP within | path tracing FLIP at ms | DDGI / path tracing "
       "|\n|---|---|---|---|---|\n");
   for (const tools::SceneTrade& trade : trades) {
-    for (double ms : tools::kEqualTimeReportMs) {
-      const std::optional<double> ddgi = tools::best_flip_within(trade.configs, ms);
-      const std::optional<double> traced = tools::path_trace_flip_at(trade.path_tracing, ms);
-      std::printf("| %s | %g | %s | %s | %s |\n", trade.scene.c_str(), ms,
-                  optional_text(ddgi).c_str(), optional_text(traced).c_str(),
-                  optional_text(ratio_of(ddgi, traced)).c_str());
+    for (const tools::EqualTimePoint& p : tools::equal_time_points(trade)) {
+      std::printf("| %s | %g | %s | %s | %s |\n", trade.scene.c_str(), p.ms,
+                  optional_text(p.best_flip_within).c_str(),
+                  optional_text(p.path_trace_flip).c_str(),
+                  optional_text(p.flip_over_path_trace).c_str());
     }
   }
 }

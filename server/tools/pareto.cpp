@@ -89,6 +89,19 @@ std::optional<double> best_flip_within(const std::vector<ConfigPoint>& configs, 
   return best;
 }
 
+std::vector<EqualTimePoint> equal_time_points(const SceneTrade& trade) {
+  std::vector<EqualTimePoint> points;
+  for (double ms : kEqualTimeReportMs) {
+    EqualTimePoint p{ms, best_flip_within(trade.configs, ms),
+                     path_trace_flip_at(trade.path_tracing, ms), std::nullopt};
+    if (p.best_flip_within && p.path_trace_flip && *p.path_trace_flip > 0.0) {
+      p.flip_over_path_trace = *p.best_flip_within / *p.path_trace_flip;
+    }
+    points.push_back(p);
+  }
+  return points;
+}
+
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms) {
   for (size_t i = 0; i + 1 < points.size(); ++i) {
     const PathTracePoint &a = points[i], &b = points[i + 1];
@@ -142,15 +155,12 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
     doc["front"].push_back(entry);
   }
   doc["equal_time"] = json::array();
-  for (double ms : kEqualTimeReportMs) {
-    const std::optional<double> ddgi = best_flip_within(trade.configs, ms);
-    const std::optional<double> traced = path_trace_flip_at(trade.path_tracing, ms);
-    doc["equal_time"].push_back(
-        {{"ms", ms},
-         {"best_flip_within", ddgi ? json(*ddgi) : json(nullptr)},
-         {"path_trace_flip", traced ? json(*traced) : json(nullptr)},
-         {"flip_over_path_trace",
-          ddgi && traced && *traced > 0.0 ? json(*ddgi / *traced) : json(nullptr)}});
+  const auto value = [](std::optional<double> v) { return v ? json(*v) : json(nullptr); };
+  for (const EqualTimePoint& p : equal_time_points(trade)) {
+    doc["equal_time"].push_back({{"ms", p.ms},
+                                 {"best_flip_within", value(p.best_flip_within)},
+                                 {"path_trace_flip", value(p.path_trace_flip)},
+                                 {"flip_over_path_trace", value(p.flip_over_path_trace)}});
   }
   DDGI_TRY(write_text_file(dir + "/" + trade.scene + ".json", doc.dump(2) + "\n"));
   return write_scatter_plot(dir + "/" + trade.scene, trade_plot(trade, front));

@@ -64,6 +64,15 @@ std::optional<double> best_flip_within(const std::vector<ConfigPoint>& configs, 
 // configuration within each against the path tracer at exactly that time.
 inline constexpr double kEqualTimeReportMs[] = {1.0, 2.0, 5.0};
 
+// One of those times: each side's FLIP and their ratio, each nothing where it was not measured.
+struct EqualTimePoint {
+  double ms = 0.0;
+  std::optional<double> best_flip_within;  // best_flip_within(configs, ms)
+  std::optional<double> path_trace_flip;   // path_trace_flip_at(path_tracing, ms)
+  std::optional<double> flip_over_path_trace;
+};
+std::vector<EqualTimePoint> equal_time_points(const SceneTrade& trade);
+
 // The path tracer's FLIP at `ms`, interpolated linearly in log(ms) between its measured points;
 // nothing outside their range.
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms);
