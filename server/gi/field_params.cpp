@@ -314,13 +314,14 @@ namespace {
 IrradianceFieldParams fit_default_grid(const Scene& scene) {
   const Bounds world = scene.world_bounds();
   IrradianceFieldParams whole = fit_grid_to_bounds(world);
-  const Bounds objects = scene.bounds_without_ground();
-  const glm::vec3 extent = objects.extent();
+  const std::optional<Bounds> objects = scene.bounds_without_ground();
+  if (!objects) return whole;
+  const glm::vec3 extent = objects->extent();
   const float reach = std::max({extent.x, extent.y, extent.z});
   const float spacing = std::max({whole.spacing.x, whole.spacing.y, whole.spacing.z});
-  if (objects.empty() || !(spacing > reach)) return whole;
-  const Bounds near{glm::max(world.min, objects.min - glm::vec3(reach)),
-                    glm::min(world.max, objects.max + glm::vec3(reach))};
+  if (!(spacing > reach)) return whole;
+  const Bounds near{glm::max(world.min, objects->min - glm::vec3(reach)),
+                    glm::min(world.max, objects->max + glm::vec3(reach))};
   return fit_grid_to_bounds(near);
 }
 

@@ -99,7 +99,7 @@ Bounds Scene::world_bounds() const {
   return bounds;
 }
 
-Bounds Scene::bounds_without_ground() const {
+std::optional<Bounds> Scene::bounds_without_ground() const {
   std::vector<Bounds> mesh_boxes;  // once per mesh: instancing repeats meshes many times
   for (const Mesh& mesh : meshes) mesh_boxes.push_back(object_bounds(mesh));
   std::vector<Bounds> boxes;
@@ -114,7 +114,7 @@ Bounds Scene::bounds_without_ground() const {
   }
   const glm::vec3 solid_extent = solid.extent();
   const float reach = std::max({solid_extent.x, solid_extent.y, solid_extent.z});
-  if (!(reach > 0.0f)) return world_bounds();
+  if (!(reach > 0.0f)) return std::nullopt;
   Bounds out = solid;
   bool ground = false;
   for (const Bounds& box : boxes) {
@@ -126,7 +126,7 @@ Bounds Scene::bounds_without_ground() const {
       grow_bounds(out, box);  // a wall, a floor of the scene's size
     }
   }
-  return ground ? out : world_bounds();
+  return ground ? std::optional<Bounds>(out) : std::nullopt;
 }
 
 bool Scene::has_any_light() const {

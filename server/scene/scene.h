@@ -164,10 +164,11 @@ struct Scene {
   // beyond that (heavy instancing), the union of each instance's transformed mesh box, which
   // may be slightly larger.
   Bounds world_bounds() const;
-  // world_bounds() without ground planes: flat instances reaching more than 4x further than
-  // everything that is not flat (a 157 m plane under a 2 m cube); world_bounds() when there is
-  // none. The default probe grid uses it (default_field_params).
-  Bounds bounds_without_ground() const;
+  // The scene's bounds without its ground planes: flat instances reaching more than 4x further
+  // than everything that is not flat (a 157 m plane under a 2 m cube); nothing when there is no
+  // such plane (then they are world_bounds()). The default probe grid uses it
+  // (default_field_params).
+  std::optional<Bounds> bounds_without_ground() const;
   // True when something emits light: a light, an emissive material in use, or the environment.
   bool has_any_light() const;
   // True when an emissive material is in use by a placed primitive (area light the probes and
