@@ -9,6 +9,9 @@
 # (.devcarry, .gl); one batch per call keeps each under the 10-minute limit:
 #   budget.sh OUT 1    cornell_box, two_rooms_open, veach_ajar
 #   budget.sh OUT 2    staircase, modern_hall, living_room
+#   budget.sh OUT clocks   six identical configurations of two_rooms_open and of modern_hall
+#                      timed back to back: the frame ms of identical work should agree (GPU
+#                      clock state; h200-2026-12-05.md "Diagnosis")
 set -euo pipefail
 out=${1:?OUT}
 batch=${2:?BATCH (1 or 2)}
@@ -18,6 +21,13 @@ mkdir -p "$out/pareto-$batch"  # ddgi-eval writes into an existing --pareto fold
 case $batch in
   1) scenes="scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/veach_ajar.ddgi.json" ;;
   2) scenes="scenes/staircase.ddgi.json scenes/modern_hall.ddgi.json scenes/living_room.ddgi.json" ;;
+  clocks)
+    same="a:rays_per_probe=128;b:rays_per_probe=128;c:rays_per_probe=128;d:rays_per_probe=128"
+    same="$same;e:rays_per_probe=128;f:rays_per_probe=128"
+    ddgi-eval scenes/two_rooms_open.gltf scenes/modern_hall.ddgi.json --width 1920 --height 1080 \
+      --spp 64 --warmup 64 --frames 31 --backend pipeline --configs "$same" 2>&1 |
+      tee "$out/clocks.txt"
+    exit 0 ;;
   *) echo "budget.sh: BATCH must be 1 or 2" >&2; exit 2 ;;
 esac
 # A device call ends at 600 s; stopping ddgi-eval a little before keeps what it wrote (the archive
