@@ -42,16 +42,18 @@ bool coarser_grid_exists(const IrradianceFieldParams& base) {
          glm::any(glm::greaterThanEqual(base.counts, glm::ivec3(3)));
 }
 
-// The medians of `frames` timed frames of the budget's size, one field update each, pipelined as a
-// session runs them, after untimed ones for a tenth of a second (clocks up after the CPU-side
-// scoring before).
-Status time_frames(vk::Context& context, GiStack& gi, Renderer& renderer,
-                   const FrameSettings& settings, uint32_t frames, CalibratedCandidate& out) {
-  DDGI_TRY(render_for(context, renderer, settings, std::chrono::milliseconds(100)));
+// The medians of `frames` timed frames of the budget's size, one field update each, after
+// untimed ones for a tenth of a second (clocks up after the CPU-side scoring before).
+Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings, uint32_t frames,
+                   CalibratedCandidate& out) {
+  settings.read_radiance = false;
+  DDGI_TRY(render_for(renderer, settings, std::chrono::milliseconds(100)));
   PassTable table;
-  DDGI_TRY(render_pipelined(
-      context, renderer, settings, frames,
-      [&] { return gi.frame_update(settings.direct_mode, {}); }, &table));
+  for (uint32_t f = 0; f < frames; ++f) {
+    DDGI_ASSIGN_OR_RETURN(const auto update, gi.frame_update(settings.direct_mode, {}));
+    DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings, update));
+    table.add(frame.pass_times);
+  }
   out.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
   out.frame_ms = table.group_median(vk::PassGroup::kFrame);
   return ok_status();
@@ -59,9 +61,9 @@ Status time_frames(vk::Context& context, GiStack& gi, Renderer& renderer,
 
 // One candidate: the field set to it and warmed up, timed (or its injected cost), then a frame
 // of the scored size compared with the reference.
-Result<CalibratedCandidate> measure(vk::Context& context, GiStack& gi, Renderer& renderer,
-                                    const GiStackOptions& base, const BudgetCandidate& candidate,
-                                    size_t index, const ReferencePair& reference,
+Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiStackOptions& base,
+                                    const BudgetCandidate& candidate, size_t index,
+                                    const ReferencePair& reference,
                                     const CalibrationOptions& options) {
   const PathTraceSettings& view = reference.settings;
   IrradianceFieldParams params = base.field;
@@ -77,7 +79,7 @@ Result<CalibratedCandidate> measure(vk::Context& context, GiStack& gi, Renderer&
   if (options.injected_ms.empty()) {
     settings.width = options.width;
     settings.height = options.height;
-    DDGI_TRY(time_frames(context, gi, renderer, settings, options.timed_frames, out));
+    DDGI_TRY(time_frames(gi, renderer, settings, options.timed_frames, out));
   } else {
     out.field_ms = 0.0;
     out.frame_ms = options.injected_ms[index];
@@ -233,8 +235,8 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
   calibration.width = options.width;
   calibration.height = options.height;
   for (size_t i = 0; i < candidates.size(); ++i) {
-    DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point, measure(context, *gi, *renderer, base,
-                                                             candidates[i], i, reference, options));
+    DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point,
+                          measure(*gi, *renderer, base, candidates[i], i, reference, options));
     LOG_INFO << "budget calibration " << i + 1 << "/" << candidates.size() << " '"
              << point.candidate.name << "': " << point.cost_ms() << " ms (field " << point.field_ms
              << " + frame " << point.frame_ms << "), FLIP " << point.flip;

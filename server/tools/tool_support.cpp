@@ -2,11 +2,9 @@
 #include "tools/tool_support.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 
 #include "core/log.h"
-#include "render/frame_target.h"
 #include "scene/gltf_loader.h"
 
 namespace ddgi::tools {
@@ -31,6 +29,15 @@ Result<Scene> load_scene_logged(const std::string& path) {
   DDGI_ASSIGN_OR_RETURN(Scene scene, load_scene(path));
   for (const std::string& warning : scene.warnings) LOG_WARNING << path << ": " << warning;
   return scene;
+}
+
+Status render_for(Renderer& renderer, const FrameSettings& settings,
+                  std::chrono::milliseconds duration) {
+  const auto until = std::chrono::steady_clock::now() + duration;
+  do {
+    DDGI_TRY(renderer.render(settings));
+  } while (std::chrono::steady_clock::now() < until);
+  return ok_status();
 }
 
 double median(std::vector<double> values) {
@@ -90,42 +97,6 @@ double PassTable::others_median(vk::PassGroup group) const {
     ms.push_back(sum);
   }
   return median(ms);
-}
-
-Status render_pipelined(vk::Context& context, Renderer& renderer, FrameSettings settings,
-                        uint32_t frames, const FrameUpdates& updates, PassTable* table) {
-  settings.read_radiance = false;
-  std::array<std::unique_ptr<FrameTarget>, 2> targets;
-  for (auto& target : targets) {
-    DDGI_ASSIGN_OR_RETURN(target, FrameTarget::create(context, settings.width, settings.height));
-  }
-  std::array<PendingFrame, 2> pending;
-  auto finish = [&](PendingFrame& frame) -> Status {
-    if (!frame.active()) return ok_status();
-    DDGI_ASSIGN_OR_RETURN(const FrameResult result, frame.finish());
-    if (table) table->add(result.pass_times);
-    return ok_status();
-  };
-  for (uint32_t f = 0; f < frames; ++f) {
-    DDGI_TRY(finish(pending[f % 2]));  // the frame before last: its target is free again
-    std::vector<vk::Pass> before;
-    if (updates) {
-      DDGI_ASSIGN_OR_RETURN(before, updates());
-    }
-    DDGI_ASSIGN_OR_RETURN(pending[f % 2], renderer.submit(settings, *targets[f % 2], before));
-  }
-  DDGI_TRY(finish(pending[frames % 2]));  // the older of the two left, first
-  return finish(pending[(frames + 1) % 2]);
-}
-
-Status render_for(vk::Context& context, Renderer& renderer, const FrameSettings& settings,
-                  std::chrono::milliseconds duration) {
-  constexpr uint32_t kFramesPerCheck = 8;
-  const auto until = std::chrono::steady_clock::now() + duration;
-  do {
-    DDGI_TRY(render_pipelined(context, renderer, settings, kFramesPerCheck, {}, nullptr));
-  } while (std::chrono::steady_clock::now() < until);
-  return ok_status();
 }
 
 }  // namespace ddgi::tools

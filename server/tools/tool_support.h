@@ -4,7 +4,6 @@
 #pragma once
 
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,8 +30,10 @@ Result<Scene> load_scene_logged(const std::string& path);
 
 double median(std::vector<double> values);
 
-// What a frame records before its own passes (a field update), or nothing.
-using FrameUpdates = std::function<Result<std::vector<vk::Pass>>()>;
+// Frames of `settings` without field updates (the field stays as it is) for `duration`, at
+// least one: the GPU's clocks up again before timing, after CPU work left it idle.
+Status render_for(Renderer& renderer, const FrameSettings& settings,
+                  std::chrono::milliseconds duration);
 
 // "dir/living_room.ddgi.json" -> "living_room": names of files written per scene.
 std::string file_stem(const std::string& path);
@@ -56,20 +57,5 @@ class PassTable {
  private:
   std::vector<std::vector<vk::PassTime>> frames_;
 };
-
-// `frames` frames of `settings` (each after `updates`' passes, when given) with two in flight,
-// as a streaming session runs them: the next frame is recorded and submitted while the GPU
-// draws the last, so the GPU does not wait on the CPU between frames and its clocks stay where
-// a session's are. Waited for one at a time, identical configurations of a light scene timed
-// at 0.86 ms per frame in one run and 1.54 ms in the next on the H200 (field ms alike), the
-// driver picking a clock from a GPU idle half the time. Each frame's pass times go to `table`
-// when given; no HDR readback.
-Status render_pipelined(vk::Context& context, Renderer& renderer, FrameSettings settings,
-                        uint32_t frames, const FrameUpdates& updates, PassTable* table);
-
-// Frames of `settings` without field updates (the field stays as it is), pipelined as above,
-// for `duration`: the GPU's clocks up again before timing, after CPU work left it idle.
-Status render_for(vk::Context& context, Renderer& renderer, const FrameSettings& settings,
-                  std::chrono::milliseconds duration);
 
 }  // namespace ddgi::tools

@@ -55,12 +55,7 @@ void GpuTimer::begin_pass(VkCommandBuffer cmd, const std::string& name, PassGrou
   }
   open_ = true;
   if (!pool_ || passes_.size() >= capacity_) return;
-  // The start stamp at the bottom of the pipe: written once all earlier work on the queue is done,
-  // this submission's and the frame's still in flight before it. At the top of the pipe it was
-  // written as soon as the command was reached, so with two frames in flight the next frame's
-  // first pass also counted the rest of the previous frame (the H100 timed frames at twice
-  // their length).
-  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_,
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_,
                       static_cast<uint32_t>(passes_.size()) * 2);
   passes_.emplace_back(name, group);
 }
