@@ -125,12 +125,12 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
     DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(settings.direct_mode, {}));
     return renderer->render(settings, update);
   };
-  // Frames (without field updates) for half a second before timing: scoring the previous
+  // Frames (without field updates) for kClockRampUp before timing: scoring the previous
   // configuration on the CPU left the GPU idle for seconds and its clocks low (the H200 timed a
   // scene's first configuration at 0.8 ms per frame and the next ones at 4-6 ms without this).
   settings.read_radiance = false;
   settings.view = View::kFull;
-  DDGI_TRY(tools::render_for(*renderer, settings, std::chrono::milliseconds(500)));
+  DDGI_TRY(tools::render_for(*renderer, settings, tools::kClockRampUp));
   tools::PassTable table;
   FrameResult full;
   for (int64_t f = 0; f < job.frames; ++f) {
@@ -178,6 +178,11 @@ Result<tools::PathTracePoint> path_trace_point(PathTracer& tracer, const EvalJob
   PathTraceSettings settings = refs.settings;
   settings.width = job.width / downscale;
   settings.height = job.height / downscale;
+  // Untimed images first: scoring the previous point left the GPU idle and its clocks low.
+  DDGI_TRY(tools::keep_gpu_busy(tools::kClockRampUp, [&] {
+    tracer.reset();
+    return tracer.accumulate(settings, spp);
+  }));
   std::vector<double> times;  // one image per timed frame; the median counts
   for (int64_t run = 0; run < job.frames; ++run) {
     tracer.reset();
@@ -203,8 +208,6 @@ Result<std::vector<tools::PathTracePoint>> path_trace_curve(vk::Context& context
                                                             const ReferencePair& refs) {
   DDGI_ASSIGN_OR_RETURN(auto gpu, GpuScene::create(context, scene));
   DDGI_ASSIGN_OR_RETURN(auto tracer, PathTracer::create(context, *gpu, context.default_backend()));
-  // Untimed images first, so the GPU's clocks are up when timing starts.
-  for (int warm = 0; warm < 4; ++warm) DDGI_TRY(tracer->accumulate(refs.settings, 4));
   std::vector<tools::PathTracePoint> curve;
   for (const uint32_t downscale : {4u, 2u}) {
     if (job.width % downscale != 0 || job.height % downscale != 0 || job.width / downscale < 8 ||

@@ -31,13 +31,20 @@ Result<Scene> load_scene_logged(const std::string& path) {
   return scene;
 }
 
-Status render_for(Renderer& renderer, const FrameSettings& settings,
-                  std::chrono::milliseconds duration) {
+Status keep_gpu_busy(std::chrono::milliseconds duration, const std::function<Status()>& work) {
   const auto until = std::chrono::steady_clock::now() + duration;
   do {
-    DDGI_TRY(renderer.render(settings));
+    DDGI_TRY(work());
   } while (std::chrono::steady_clock::now() < until);
   return ok_status();
+}
+
+Status render_for(Renderer& renderer, const FrameSettings& settings,
+                  std::chrono::milliseconds duration) {
+  return keep_gpu_busy(duration, [&]() -> Status {
+    DDGI_TRY(renderer.render(settings));
+    return ok_status();
+  });
 }
 
 double median(std::vector<double> values) {

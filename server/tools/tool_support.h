@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +30,16 @@ Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags);
 Result<Scene> load_scene_logged(const std::string& path);
 
 double median(std::vector<double> values);
+
+// How long untimed GPU work runs before timing, after CPU work (scoring an image) left the GPU
+// idle. The driver sets the clock from the load: on the lent H100 (nvidia-smi every 200 ms,
+// docs/results/budget/h200-2026-12-05.md) the SM clock rose from 345 to 1980 MHz over 0.8-1.2 s
+// of load and fell back 1.4 s after the load stopped. Warmed for 0.5 s, six identical
+// configurations timed 0.87-1.78 ms per frame; warmed for 3 s, 0.859-0.868 ms.
+inline constexpr std::chrono::milliseconds kClockRampUp{2000};
+
+// Calls `work` (untimed GPU work) until `duration` has passed, at least once.
+Status keep_gpu_busy(std::chrono::milliseconds duration, const std::function<Status()>& work);
 
 // Frames of `settings` without field updates (the field stays as it is) for `duration`, at
 // least one: the GPU's clocks up again before timing, after CPU work left it idle.
