@@ -79,6 +79,10 @@ Result<std::vector<std::string>> budget_rows(vk::Context& context, const EvalJob
       const Calibration calibration,
       calibrate(context, scene, default_camera(scene), base, candidates, options));
   std::fprintf(stderr, "%s: calibrated in %.1f s\n", stem.c_str(), calibration.seconds);
+  for (const CalibratedCandidate& c : calibration.candidates) {
+    std::fprintf(stderr, "  %s: %.3f ms, FLIP %.4f\n", c.candidate.name.c_str(), c.cost_ms(),
+                 c.flip);
+  }
   std::vector<std::string> rows;
   for (const double budget_ms : job.budgets) {
     rows.push_back(
