@@ -121,7 +121,7 @@ Result<EvalJob> parse_job(const Flags& flags) {
   job.width = static_cast<uint32_t>(width);
   job.height = static_cast<uint32_t>(height);
   DDGI_ASSIGN_OR_RETURN(job.spp, flags.get_int("spp", 1024, 1, 1 << 20));
-  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", 64, 0, 100000));
+  DDGI_ASSIGN_OR_RETURN(job.warmup, flags.get_int("warmup", kConvergedWarmupUpdates, 0, 100000));
   DDGI_ASSIGN_OR_RETURN(job.frames, flags.get_int("frames", 10, 1, 10000));
   DDGI_ASSIGN_OR_RETURN(const std::string configs_text, flags.get_string("configs", "default:"));
   DDGI_ASSIGN_OR_RETURN(job.configs, parse_configs(configs_text));

@@ -38,6 +38,10 @@ struct BudgetCandidate {
 std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
                                                const IrradianceFieldParams& base);
 
+// Field updates after which a field is scored as settled: the budget calibration's and
+// ddgi-eval's default warm-up.
+inline constexpr uint32_t kConvergedWarmupUpdates = 64;
+
 // How a calibration measures. Every field: default, range, reason.
 struct CalibrationOptions {
   // The frame the budget pays for, in pixels; [16, 16384] each. 1080p: the product's stream.
@@ -48,12 +52,12 @@ struct CalibrationOptions {
   // [1, 65536]. 256: under a second on the H200 for the repo's scenes; tests pass fewer.
   uint32_t reference_spp = 256;
   // Field updates before a candidate is timed and scored, [1, 4096]: converged as a session is,
-  // and as ddgi-eval's --warmup (64). After 32 (+ 7 timed) updates the ranking followed how fast
-  // a field converges rather than where it settles: on two_rooms_open (lavapipe, 320x180) FLIP
-  // fell with rays, 0.175 at 32 rays to 0.133 at 256, while after 65 updates 256 rays scored
-  // worst (0.161 against 0.150-0.155), and the budget chose 256 rays where 32 measured 10%
-  // better at 1080p on the H100.
-  uint32_t warmup_updates = 64;
+  // and as ddgi-eval's --warmup default (the same constant). After 32 (+ 7 timed) updates the
+  // ranking followed how fast a field converges rather than where it settles: on two_rooms_open
+  // (lavapipe, 320x180) FLIP fell with rays, 0.175 at 32 rays to 0.133 at 256, while after 65
+  // updates 256 rays scored worst (0.161 against 0.150-0.155), and the budget chose 256 rays where
+  // 32 measured 10% better at 1080p on the H100.
+  uint32_t warmup_updates = kConvergedWarmupUpdates;
   // Timed frames per candidate (one field update each; the median counts), [1, 1000].
   uint32_t timed_frames = 7;
   // Tests only (lavapipe's times mean nothing): each candidate's cost in ms, by index; timing
