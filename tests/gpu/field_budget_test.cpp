@@ -7,17 +7,20 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
+#include <thread>
 
 #include "gi/field_params.h"
 #include "tests/gpu/cli_run.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
 #include "tools/field_budget.h"
+#include "tools/tool_support.h"
 
 namespace ddgi::test {
 namespace {
@@ -253,6 +256,17 @@ TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
   EXPECT_GE(std::stod(fits[8]), 1.0);  // FLIP over the best within the budget: all fit
   EXPECT_NE(budget_rows[1][2].find("refused: budget_ms 1e-06 cannot be met"), std::string::npos)
       << run.out;
+  // The calibration's own figures, one line per candidate on stderr: what the choice was made on.
+  for (const auto& [name, flip] : table_flip) {
+    const std::string line = "  " + name + ": ";
+    const size_t at = run.err.find(line);
+    ASSERT_NE(at, std::string::npos) << name << "\n" << run.err;
+    const std::string rest = run.err.substr(at + line.size(), run.err.find('\n', at) - at);
+    const size_t flip_at = rest.find(" ms, FLIP ");
+    ASSERT_NE(flip_at, std::string::npos) << rest;
+    EXPECT_GT(std::stod(rest.substr(0, flip_at)), 0.0) << rest;
+    EXPECT_GT(std::stod(rest.substr(flip_at + 10)), 0.0) << rest;
+  }
 
   const CliRun bad = run_cli(DDGI_EVAL_EXE, "scenes/cornell_box.gltf --budgets 2,0", dir);
   EXPECT_EQ(bad.exit_code, 2);
@@ -262,6 +276,33 @@ TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
   EXPECT_EQ(both.exit_code, 2);
   EXPECT_NE(both.err.find("drop --configs"), std::string::npos) << both.err;
   std::filesystem::remove_all(dir);
+}
+
+// The clock warm-up before timing: work repeated until the duration has passed, at least once,
+// and stopped at the first error.
+TEST(KeepGpuBusy, RepeatsTheWorkForTheDurationAndStopsAtAnError) {
+  int calls = 0;
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(tools::keep_gpu_busy(std::chrono::milliseconds(50), [&]() -> Status {
+                ++calls;
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                return ok_status();
+              }).ok());
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(50));
+  EXPECT_GE(calls, 5) << "5 ms per call over 50 ms";
+  calls = 0;
+  EXPECT_TRUE(tools::keep_gpu_busy(std::chrono::milliseconds(0), [&]() -> Status {
+                ++calls;
+                return ok_status();
+              }).ok());
+  EXPECT_EQ(calls, 1) << "at least once";
+  calls = 0;
+  const Status failed = tools::keep_gpu_busy(std::chrono::milliseconds(1000), [&]() -> Status {
+    ++calls;
+    return internal_error("device lost");
+  });
+  EXPECT_FALSE(failed.ok());
+  EXPECT_EQ(calls, 1) << "stopped at the error";
 }
 
 }  // namespace
