@@ -1,7 +1,8 @@
 // The time budget (tools/field_budget.h): candidates from scene analysis, a calibration that
 // scores every candidate against the path tracer (costs injected: lavapipe's times mean nothing),
 // the choice of the lowest error that fits, the refusal of a budget nothing fits, the cache, and
-// ddgi-eval --budgets, which checks the choice against the measured trade.
+// ddgi-eval --budgets, which checks the choice against the measured trade; and the clock
+// warm-up that every timing starts with (tools::keep_gpu_busy).
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -257,7 +258,8 @@ TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
   EXPECT_NE(budget_rows[1][2].find("refused: budget_ms 1e-06 cannot be met"), std::string::npos)
       << run.out;
   // The calibration's own figures, one line per candidate on stderr: what the choice was made on.
-  for (const auto& [name, flip] : table_flip) {
+  for (const auto& entry : table_flip) {
+    const std::string& name = entry.first;
     const std::string line = "  " + name + ": ";
     const size_t at = run.err.find(line);
     ASSERT_NE(at, std::string::npos) << name << "\n" << run.err;
