@@ -389,10 +389,6 @@ std::string optional_text(std::optional<double> value) {
   return buffer;
 }
 
-std::optional<double> ratio_of(std::optional<double> a, std::optional<double> b) {
-  return a && b && *b > 0.0 ? std::optional<double>(*a / *b) : std::nullopt;
-}
-
 // After the table: per scene, each front point against the path tracer: its FLIP at the same
 // ms, and the ms it needs for the same FLIP ("-": outside the traced spp range).
 void print_fronts(const std::vector<tools::SceneTrade>& trades) {
@@ -406,7 +402,7 @@ void print_fronts(const std::vector<tools::SceneTrade>& trades) {
           tools::path_trace_flip_at(trade.path_tracing, c.total_ms());
       std::printf("| %s | %s | %.3f | %.4f | %s | %s | %s |\n", trade.scene.c_str(), c.name.c_str(),
                   c.total_ms(), c.full.flip, optional_text(traced).c_str(),
-                  optional_text(ratio_of(c.full.flip, traced)).c_str(),
+                  optional_text(tools::ratio_of(c.full.flip, traced)).c_str(),
                   optional_text(tools::path_trace_ms_for(trade.path_tracing, c.full.flip)).c_str());
     }
   }

@@ -27,6 +27,11 @@ json config_json(const ConfigPoint& c) {
           {"indirect", scores_json(c.indirect)}};
 }
 
+// null where a figure was not measured.
+json optional_json(std::optional<double> value) {
+  return value ? json(*value) : json(nullptr);
+}
+
 constexpr size_t kPlotNamesEveryConfigUpTo = 8;
 
 ScatterPlot trade_plot(const SceneTrade& trade, const std::vector<size_t>& front) {
@@ -94,12 +99,14 @@ std::vector<EqualTimePoint> equal_time_points(const SceneTrade& trade) {
   for (double ms : kEqualTimeReportMs) {
     EqualTimePoint p{ms, best_flip_within(trade.configs, ms),
                      path_trace_flip_at(trade.path_tracing, ms), std::nullopt};
-    if (p.best_flip_within && p.path_trace_flip && *p.path_trace_flip > 0.0) {
-      p.flip_over_path_trace = *p.best_flip_within / *p.path_trace_flip;
-    }
+    p.flip_over_path_trace = ratio_of(p.best_flip_within, p.path_trace_flip);
     points.push_back(p);
   }
   return points;
+}
+
+std::optional<double> ratio_of(std::optional<double> a, std::optional<double> b) {
+  return a && b && *b > 0.0 ? std::optional<double>(*a / *b) : std::nullopt;
 }
 
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms) {
@@ -147,20 +154,18 @@ Status write_scene_trade(const SceneTrade& trade, const std::string& dir) {
         {"config", i}, {"name", c.name}, {"total_ms", c.total_ms()}, {"flip", c.full.flip}};
     const std::optional<double> traced = path_trace_flip_at(trade.path_tracing, c.total_ms());
     // null where the path tracer was not measured at this time (outside its spp range).
-    entry["path_trace_flip_same_ms"] = traced ? json(*traced) : json(nullptr);
-    entry["flip_over_path_trace"] =
-        traced && *traced > 0.0 ? json(c.full.flip / *traced) : json(nullptr);
-    const std::optional<double> match = path_trace_ms_for(trade.path_tracing, c.full.flip);
-    entry["path_trace_ms_same_flip"] = match ? json(*match) : json(nullptr);
+    entry["path_trace_flip_same_ms"] = optional_json(traced);
+    entry["flip_over_path_trace"] = optional_json(ratio_of(c.full.flip, traced));
+    entry["path_trace_ms_same_flip"] =
+        optional_json(path_trace_ms_for(trade.path_tracing, c.full.flip));
     doc["front"].push_back(entry);
   }
   doc["equal_time"] = json::array();
-  const auto value = [](std::optional<double> v) { return v ? json(*v) : json(nullptr); };
   for (const EqualTimePoint& p : equal_time_points(trade)) {
     doc["equal_time"].push_back({{"ms", p.ms},
-                                 {"best_flip_within", value(p.best_flip_within)},
-                                 {"path_trace_flip", value(p.path_trace_flip)},
-                                 {"flip_over_path_trace", value(p.flip_over_path_trace)}});
+                                 {"best_flip_within", optional_json(p.best_flip_within)},
+                                 {"path_trace_flip", optional_json(p.path_trace_flip)},
+                                 {"flip_over_path_trace", optional_json(p.flip_over_path_trace)}});
   }
   DDGI_TRY(write_text_file(dir + "/" + trade.scene + ".json", doc.dump(2) + "\n"));
   return write_scatter_plot(dir + "/" + trade.scene, trade_plot(trade, front));

@@ -73,6 +73,9 @@ struct EqualTimePoint {
 };
 std::vector<EqualTimePoint> equal_time_points(const SceneTrade& trade);
 
+// a / b where both were measured and b > 0 (a FLIP over the path tracer's); else nothing.
+std::optional<double> ratio_of(std::optional<double> a, std::optional<double> b);
+
 // The path tracer's FLIP at `ms`, interpolated linearly in log(ms) between its measured points;
 // nothing outside their range.
 std::optional<double> path_trace_flip_at(const std::vector<PathTracePoint>& points, double ms);
