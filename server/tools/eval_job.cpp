@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "encode/write_image.h"
@@ -39,7 +40,61 @@ double mean_ratio(const std::vector<float>& test, const std::vector<float>& refe
   return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
 }
 
+// Sorts one "name=value" of a configuration: a choice of the frame's (direct=, frame_downscale=,
+// shadow.NAME=) or a field assignment, checked later by the field's parameter table.
+Status add_assignment(Config& config, const std::string& assignment) {
+  const size_t equals = assignment.find('=');
+  const std::string name = assignment.substr(0, equals), value = assignment.substr(equals + 1);
+  const std::string context = "--configs '" + config.name + "'";
+  if (name == "direct") {
+    Result<DirectMode> mode = parse_direct_mode(value);
+    if (!mode.ok()) return mode.error().with_context(context);
+    config.direct_mode = *mode;
+  } else if (name == "frame_downscale") {
+    char* end = nullptr;
+    const long n = std::strtol(value.c_str(), &end, 10);
+    if (value.empty() || *end != '\0' || n < 1 || n > 8) {
+      return invalid_argument(
+          context + ": frame_downscale must be a whole number in [1, 8] (got '" + value + "')");
+    }
+    config.frame_downscale = static_cast<uint32_t>(n);
+  } else if (name.rfind("shadow.", 0) == 0) {
+    config.shadow_assignments.push_back(assignment.substr(7));
+  } else {
+    config.assignments.push_back(assignment);
+  }
+  return ok_status();
+}
+
+// A smaller frame is made only for the table and --pareto (the references of --dynamic and
+// --path are compared with every frame as drawn), at a size it divides into at least 8 pixels.
+Status check_frame_downscale(const EvalJob& job, const Config& config) {
+  const uint32_t n = config.frame_downscale;
+  if (n == 1) return ok_status();
+  const std::string context =
+      "--configs '" + config.name + "': frame_downscale=" + std::to_string(n);
+  if (!job.dynamic.empty() || !job.camera_path.empty()) {
+    return invalid_argument(context + " is for the table and --pareto, not --dynamic or --path");
+  }
+  if (job.width % n != 0 || job.height % n != 0 || job.width / n < 8 || job.height / n < 8) {
+    return invalid_argument(context + " must divide --width " + std::to_string(job.width) +
+                            " and --height " + std::to_string(job.height) +
+                            " into at least 8 pixels each");
+  }
+  return ok_status();
+}
+
 }  // namespace
+
+std::vector<std::string> Config::all_assignments() const {
+  std::vector<std::string> all = assignments;
+  for (const std::string& a : shadow_assignments) all.push_back("shadow." + a);
+  if (direct_mode != DirectMode::kTracedShadows) {
+    all.push_back(std::string("direct=") + direct_mode_name(direct_mode));
+  }
+  if (frame_downscale != 1) all.push_back("frame_downscale=" + std::to_string(frame_downscale));
+  return all;
+}
 
 Result<std::vector<Config>> parse_configs(const std::string& text) {
   std::vector<Config> configs;
@@ -51,21 +106,23 @@ Result<std::vector<Config>> parse_configs(const std::string& text) {
     if (colon == std::string::npos || colon == 0) {
       return invalid_argument("--configs entry '" + entry + "' is not NAME:ASSIGNMENTS");
     }
-    Config c{entry.substr(0, colon), {}};
     // Assignments are comma-separated, and so are vector values (counts=8,8,8): a piece with
     // no '=' continues the value before it.
+    std::vector<std::string> assignments;
     std::stringstream items(entry.substr(colon + 1));
     std::string item;
     while (std::getline(items, item, ',')) {
       if (item.find('=') != std::string::npos) {
-        c.assignments.push_back(item);
-      } else if (!c.assignments.empty()) {
-        c.assignments.back() += "," + item;
+        assignments.push_back(item);
+      } else if (!assignments.empty()) {
+        assignments.back() += "," + item;
       } else if (!item.empty()) {
         return invalid_argument("--configs entry '" + entry + "': '" + item +
                                 "' is not NAME=VALUE");
       }
     }
+    Config c{entry.substr(0, colon), {}};
+    for (const std::string& a : assignments) DDGI_TRY(add_assignment(c, a));
     configs.push_back(c);
   }
   if (configs.empty()) return invalid_argument("--configs names no configuration");
@@ -141,6 +198,7 @@ Result<EvalJob> parse_job(const Flags& flags) {
   if (!job.budgets.empty() && flags.has("configs")) {
     return invalid_argument("--budgets measures the budget's own candidates: drop --configs");
   }
+  for (const Config& c : job.configs) DDGI_TRY(check_frame_downscale(job, c));
   return job;
 }
 
@@ -158,9 +216,14 @@ Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJ
                                                const Config& config) {
   DDGI_ASSIGN_OR_RETURN(
       const GiStackOptions options,
-      fitted_gi_options(fitted, true, DirectMode::kTracedShadows, config_assignments(job, config),
-                        {}, context.default_backend()));
+      fitted_gi_options(fitted, true, config.direct_mode, config_assignments(job, config),
+                        config.shadow_assignments, context.default_backend()));
   return GiStack::create(context, scene, options);
+}
+
+Result<std::unique_ptr<Renderer>> make_renderer(vk::Context& context, GiStack& gi) {
+  return Renderer::create(context, gi.scene(), gi.field(), context.default_backend(),
+                          gi.shadow_field());
 }
 
 Result<ReferencePair> make_references(vk::Context& context, const EvalJob& job, const Scene& scene,

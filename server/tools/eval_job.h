@@ -12,6 +12,8 @@
 #include "core/flags.h"
 #include "core/result.h"
 #include "gi/gi_stack.h"
+#include "gpu_scene/frame_types.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 #include "tools/pareto.h"
 #include "tools/reference_render.h"
@@ -19,10 +21,21 @@
 
 namespace ddgi::tools {
 
-// One field configuration: a name for the tables and its "name=value" field assignments.
+// One configuration a user can choose: a name for the tables, its "name=value" field
+// assignments, and how the frame is made (the issue 14 sweep's direct modes, shadow field
+// resolutions and frame sizes, beside the field's own parameters).
 struct Config {
   std::string name;
-  std::vector<std::string> assignments;
+  std::vector<std::string> assignments;                 // field parameters (field_param_table)
+  std::vector<std::string> shadow_assignments;          // "shadow.NAME=VALUE": shadow_param_table
+  DirectMode direct_mode = DirectMode::kTracedShadows;  // "direct=MODE" (parse_direct_mode)
+  // "frame_downscale=N", N in [1, 8]: the frame drawn at 1/N of the width and height, then
+  // upscaled to the reference's size to be scored (a stream's cheaper frame, as the path
+  // tracer's 1/16 and 1/4 spp points are made). It must divide both.
+  uint32_t frame_downscale = 1;
+
+  // Every choice as "name=value" text, field assignments first: what the JSON records.
+  std::vector<std::string> all_assignments() const;
 };
 
 // --configs: NAME:ASSIGNMENTS entries separated by ';'.
@@ -50,7 +63,7 @@ struct EvalJob {
 
 Result<EvalJob> parse_job(const Flags& flags);
 
-// --field's assignments, then the configuration's own.
+// --field's assignments, then the configuration's own field assignments.
 std::vector<std::string> config_assignments(const EvalJob& job, const Config& config);
 
 // A GI stack of `config` on `scene`, its grid fitted to `fitted` (the scene as loaded, so that a
@@ -58,6 +71,10 @@ std::vector<std::string> config_assignments(const EvalJob& job, const Config& co
 Result<std::unique_ptr<GiStack>> make_gi_stack(vk::Context& context, const EvalJob& job,
                                                const Scene& fitted, const Scene& scene,
                                                const Config& config);
+
+// The renderer of `gi`'s scene, field and shadow field (which the shadow-field and AO direct
+// modes read), on the context's default backend.
+Result<std::unique_ptr<Renderer>> make_renderer(vk::Context& context, GiStack& gi);
 
 // Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
 float auto_exposure(const std::vector<float>& radiance);

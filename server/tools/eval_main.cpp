@@ -60,7 +60,12 @@ readbacks not included).
   --configs LIST        NAME:ASSIGNMENTS entries separated by ';', ASSIGNMENTS being
                         comma-separated field parameters (vectors keep their commas), e.g.
                         "default:;no management:classification=false,relocation_iterations=0;
-                        dense:counts=12,12,12"
+                        dense:counts=12,12,12"; and how the frame is made:
+                        direct=MODE (shadow-rays, unshadowed, shadow-field, ao; the
+                        direct light of the frame and of probe-ray hits) [shadow-rays],
+                        shadow.NAME=VALUE (a shadow field parameter, e.g. shadow.texels=8),
+                        frame_downscale=N (drawn at 1/N the size each way, upscaled to be
+                        scored; not with --dynamic or --path)                    [1]
                                                                         [default:]
   --field NAME=VALUE    applied to every configuration first (repeatable)
   --out-dir DIR         also write every reference and frame as EXR there
@@ -105,25 +110,44 @@ readbacks not included).
   --backend B           auto | query | pipeline                         [auto]
 )";
 
+// A frame drawn at 1/frame_downscale of the job's size (Config::frame_downscale), stretched to
+// the job's size as the path tracer's cheaper points are, so it is scored against the same
+// reference; one drawn at the job's size as it is.
+FrameResult frame_at_job_size(FrameResult frame, const EvalJob& job) {
+  // Frames whose radiance is not read back (the unscored timed ones) are left as they are.
+  if (frame.radiance.empty() || (frame.width == job.width && frame.height == job.height)) {
+    return frame;
+  }
+  const PathTraceImage drawn{frame.width, frame.height, 1, std::move(frame.radiance),
+                             std::move(frame.ldr)};
+  PathTraceImage stretched = tools::upscaled(drawn, job.width, job.height);
+  frame.width = job.width;
+  frame.height = job.height;
+  frame.radiance = std::move(stretched.radiance);
+  frame.ldr = std::move(stretched.ldr);
+  return frame;
+}
+
 // One table row: a warmed-up field of `config`, `frames` timed full frames (one update each),
 // then the indirect view, both scored against the references.
 Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& job,
                                            const Scene& scene, const std::string& stem,
                                            const ReferencePair& refs, const Config& config) {
   DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, scene, config));
-  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
-                                                        context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto renderer, tools::make_renderer(context, *gi));
   gi->track(refs.settings.camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   FrameSettings settings;
-  settings.width = job.width;
-  settings.height = job.height;
+  settings.width = job.width / config.frame_downscale;
+  settings.height = job.height / config.frame_downscale;
   settings.camera = refs.settings.camera;
   settings.exposure = refs.exposure;
+  settings.direct_mode = config.direct_mode;
   auto frame = [&](View view) -> Result<FrameResult> {
     settings.view = view;
     DDGI_ASSIGN_OR_RETURN(const auto update, gi->frame_update(settings.direct_mode, {}));
-    return renderer->render(settings, update);
+    DDGI_ASSIGN_OR_RETURN(FrameResult result, renderer->render(settings, update));
+    return frame_at_job_size(std::move(result), job);
   };
   // Frames (without field updates) for kClockRampUp before timing: scoring the previous
   // configuration on the CPU left the GPU idle for seconds and its clocks low (the H200 timed a
@@ -142,7 +166,9 @@ Result<tools::ConfigPoint> evaluate_config(vk::Context& context, const EvalJob& 
   }
   settings.read_radiance = true;
   DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, frame(View::kIndirect));
-  tools::ConfigPoint point{config.name, tools::config_assignments(job, config)};
+  tools::ConfigPoint point{config.name, job.field_assignments};
+  const std::vector<std::string> own = config.all_assignments();
+  point.assignments.insert(point.assignments.end(), own.begin(), own.end());
   DDGI_ASSIGN_OR_RETURN(point.full, score(refs.full.ldr, refs.full.radiance, full.ldr,
                                           full.radiance, job.width, job.height));
   DDGI_ASSIGN_OR_RETURN(point.indirect, score(refs.second.ldr, refs.second.radiance, indirect.ldr,
@@ -256,14 +282,14 @@ Result<WarmField> warm_field(vk::Context& context, const EvalJob& job, const Sce
                              const Scene& scene, const ReferencePair& refs, const Config& config) {
   WarmField w;
   DDGI_ASSIGN_OR_RETURN(w.gi, make_gi_stack(context, job, fitted, scene, config));
-  DDGI_ASSIGN_OR_RETURN(w.renderer, Renderer::create(context, w.gi->scene(), w.gi->field(),
-                                                     context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(w.renderer, tools::make_renderer(context, *w.gi));
   w.gi->track(refs.settings.camera.position);
   DDGI_TRY(w.gi->warm_up(static_cast<uint32_t>(job.warmup)));
   w.settings.width = job.width;
   w.settings.height = job.height;
   w.settings.camera = refs.settings.camera;
   w.settings.exposure = refs.exposure;
+  w.settings.direct_mode = config.direct_mode;
   w.settings.view = View::kIndirect;
   return w;
 }

@@ -25,7 +25,7 @@ struct ImageScores {
 
 struct ConfigPoint {
   std::string name;
-  std::vector<std::string> assignments;  // the field parameters set, "name=value"
+  std::vector<std::string> assignments;  // what was set, "name=value" (Config::all_assignments)
   double field_ms = 0.0;                 // medians over the timed frames
   double frame_ms = 0.0;
   double field_mib = 0.0;  // the field's GPU memory

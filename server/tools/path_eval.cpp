@@ -91,6 +91,7 @@ struct Walker {
   Renderer& renderer;
   const EvalJob& job;
   PathWalk& walk;
+  DirectMode direct_mode;       // the configuration's (Config::direct_mode)
   std::vector<float> previous;  // the last frame's indirect radiance
 
   Status frame(int64_t step, const Camera& camera, float exposure, const PathView* scored) {
@@ -102,6 +103,7 @@ struct Walker {
     settings.camera = camera;
     settings.exposure = exposure;
     settings.view = View::kIndirect;
+    settings.direct_mode = direct_mode;
     DDGI_ASSIGN_OR_RETURN(const auto update, gi.frame_update(settings.direct_mode, {}));
     DDGI_ASSIGN_OR_RETURN(FrameResult indirect, renderer.render(settings, update));
     PassTable table;
@@ -144,13 +146,12 @@ Result<PathWalk> walk_config(vk::Context& context, const EvalJob& job, const Sce
   PathWalk walk;
   walk.name = config.name;
   DDGI_ASSIGN_OR_RETURN(auto gi, make_gi_stack(context, job, scene, scene, config));
-  DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
-                                                        context.default_backend()));
+  DDGI_ASSIGN_OR_RETURN(auto renderer, make_renderer(context, *gi));
   gi->track(views.front().camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
   walk.probes = probe_count(gi->field()->params());
   walk.field_mib = double(field_gpu_bytes(gi->field()->params())) / (1024.0 * 1024.0);
-  Walker walker{*gi, *renderer, job, walk, {}};
+  Walker walker{*gi, *renderer, job, walk, config.direct_mode, {}};
   const int64_t steps = path_frames(job, path);
   const float yfov = views.front().camera.yfov;
   size_t next = 0;  // the next scored view

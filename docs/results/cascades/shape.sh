@@ -6,6 +6,10 @@
 #   shape.sh 1 OUT   32x16x32 ratio 4 (path.sh's), 64x16x16 ratio 4 and 3, one grid 192x8x32
 #   shape.sh 2 OUT   one grid 192x8x32 (control), 64x16x16 ratio 2.5, 64x16x16 ratio 3 at
 #                    spacing 0.4, 4 cascades of 64x12x16 ratio 2.5, 64x16x16 ratio 3.5
+#   shape.sh 3 OUT   64x16x16 ratio 3 (control), and cascades with a coarse static grid over the
+#                    whole street under them (last in the blend order, so it lights only what
+#                    no cascade reaches: the far street): 64x14x16 ratio 3 + 96x4x16 (4.2 x 5 x
+#                    2.5 m), 64x15x16 ratio 3 + 48x4x16 (8.3 x 5 x 2.5 m); each 49,152 probes
 # ddgi-eval --path with path.sh eval's flags, all configurations in one call. Writes
 # OUT/shape[2]-h200.txt (stdout) and OUT/street.path.{csv,svg}; the EXR frames that --out-dir
 # also writes stay in a scratch folder and are deleted.
@@ -29,7 +33,13 @@ case "$round" in
     name=shape2-h200.txt
     configs="$one_grid;cascades 64x16x16 ratio 2.5:$(cascades 64,16,16 2.5);cascades 64x16x16 ratio 3 spacing 0.4:$(cascades 64,16,16 3 0.4);4 cascades 64x12x16 ratio 2.5:$(cascades 64,12,16 2.5 0.5 4);cascades 64x16x16 ratio 3.5:$(cascades 64,16,16 3.5)"
     ;;
-  *) echo "usage: shape.sh 1|2 OUT" >&2; exit 2 ;;
+  3)
+    name=shape3-h200.txt
+    under_fine="static_volumes=-197.917,2.5,-18.75/4.16667,5,2.5/96,4,16"
+    under_coarse="static_volumes=-195.833,2.5,-18.75/8.33333,5,2.5/48,4,16"
+    configs="cascades 64x16x16 ratio 3:$(cascades 64,16,16 3);64x14x16 ratio 3 + grid 96x4x16:$(cascades 64,14,16 3),$under_fine;64x15x16 ratio 3 + grid 48x4x16:$(cascades 64,15,16 3),$under_coarse"
+    ;;
+  *) echo "usage: shape.sh 1|2|3 OUT" >&2; exit 2 ;;
 esac
 start=$(date +%s)
 ddgi-eval scenes/street.ddgi.json --path scenes/street.path.json --width 480 --height 270 \
