@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gi/light_power.h"
 #include "gi/probe_grid.h"
 #include "shared/field_data.h"
 
@@ -333,7 +334,7 @@ IrradianceFieldParams default_field_params(const Scene& scene) {
                                      ? placed(IrradianceFieldParams{}, *scene.probe_grid)
                                      : fit_default_grid(scene);
   params.static_volumes = scene.probe_volumes;
-  if (scene.has_emissive_surfaces()) params.emitter_samples = kSceneEmitterSamples;
+  if (emitters_worth_sampling(scene)) params.emitter_samples = kSceneEmitterSamples;
   return params;
 }
 

@@ -179,8 +179,9 @@ struct IrradianceFieldParams {
   // and each probe-ray hit takes this many samples on the emitters (area x luminance, one
   // shadow ray each), and probe rays no longer carry the emission they see (it would count
   // twice). 0: off, emitter light reaches surfaces through the field (probe rays hit the
-  // emitters, the 2021 paper's way). [0, 64]. 0 here; a scene with emissive surfaces gets
-  // kSceneEmitterSamples from default_field_params: carried by the field, a small bright emitter
+  // emitters, the 2021 paper's way). [0, 64]. 0 here; a scene whose emissive surfaces put out
+  // kEmitterShareToSample of its light or more (gi/light_power.h) gets kSceneEmitterSamples from
+  // default_field_params: carried by the field, a small bright emitter
   // loses light (few probe rays hit it, and the perceptual encoding's temporal blend is a power
   // mean that undercounts rare bright hits: -37% in DefaultEnergyTest's room, -16 to -19% on
   // cornell_kajiya and veach_ajar, docs/results/default-energy.md) and a probe grid cannot hold
@@ -216,7 +217,7 @@ Status validate(const IrradianceFieldParams& params);
 IrradianceFieldParams fit_grid_to_bounds(const Bounds& bounds, uint32_t target_probes = 512,
                                          IrradianceFieldParams base = {});
 
-// Emitter samples per pixel and probe-ray hit a scene with emissive surfaces gets by default
+// Emitter samples per pixel and probe-ray hit an emitter-lit scene gets by default
 // (IrradianceFieldParams::emitter_samples says why). 2: the frame's mean within 1% of 8
 // samples' on cornell_kajiya at half their frame cost (docs/results/default-energy.md).
 inline constexpr uint32_t kSceneEmitterSamples = 2;
@@ -224,7 +225,7 @@ inline constexpr uint32_t kSceneEmitterSamples = 2;
 // What a user gets without setting anything: the grid the scene asks for (sidecar
 // `probe_grid`), else one fitted to its bounds (objects on a far-reaching ground plane: to them
 // and the ground around them), the sidecar's static volumes, and emitter
-// sampling where the scene has emissive surfaces.
+// sampling where emissive surfaces carry a share of the scene's light (emitters_worth_sampling).
 IrradianceFieldParams default_field_params(const Scene& scene);
 
 // Probes of the whole field: every volume's.

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -14,6 +16,8 @@
 #include <vector>
 
 #include "gi/field_params.h"
+#include "gi/light_power.h"
+#include "scene/gltf_loader.h"
 
 namespace ddgi {
 namespace {
@@ -221,6 +225,96 @@ TEST(FieldParams, EmissiveScenesSampleTheirEmittersByDefault) {
   EXPECT_EQ(p.emitter_samples, kSceneEmitterSamples);
   ASSERT_TRUE(field_param_table().apply(p, {"emitter_samples=0"}).ok());
   EXPECT_EQ(p.emitter_samples, 0u);
+}
+
+// A scene of one emissive triangle (legs `leg`, radiance `radiance`) on a square ground of
+// side `ground` at y = 0.
+Scene emitter_on_ground(float leg, float radiance, float ground) {
+  Scene scene;
+  scene.materials.push_back(Material{});
+  scene.materials.push_back(Material{});
+  scene.materials.back().emissive = glm::vec3(radiance);
+  Primitive emitter;
+  emitter.positions = {{0, 1, 0}, {leg, 1, 0}, {0, 1, leg}};
+  emitter.indices = {0, 1, 2};
+  emitter.material = 1;
+  Primitive plane;
+  plane.positions = {
+      {-ground / 2, 0, -ground / 2}, {ground / 2, 0, ground / 2}, {ground / 2, 0, -ground / 2}};
+  plane.indices = {0, 1, 2};
+  plane.material = 0;
+  scene.meshes.push_back(Mesh{"emitter", {emitter, plane}});
+  scene.instances.push_back(Instance{"emitter", 0, 0});
+  return scene;
+}
+
+// The light each source puts out, against the analytic values: pi x area x radiance for an
+// emitter, 4 pi I for a point light, the cone's solid angle x I for a spot, irradiance x the
+// facing area of the bounds for the sun.
+TEST(LightPower, EachSourceAgainstItsAnalyticFlux) {
+  constexpr double kPi = 3.14159265358979323846;
+  Scene scene = emitter_on_ground(0.5f, 8.0f, 10.0f);  // bounds 10 x 1 x 10 m
+  scene.lights.push_back(Light{"point", LightType::kPoint, glm::vec3(1.0f), 3.0f});
+  Light spot{"spot", LightType::kSpot, glm::vec3(1.0f), 2.0f};
+  spot.outer_cone_angle = 0.5f;
+  scene.lights.push_back(spot);
+  Light sun{"sun", LightType::kDirectional, glm::vec3(1.0f), 4.0f};
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  scene.lights.push_back(sun);
+  const LightPower power = light_power(scene);
+  EXPECT_NEAR(power.emitters, kPi * 0.125 * 8.0, 1e-4);
+  EXPECT_NEAR(power.punctual, 4.0 * kPi * 3.0 + 2.0 * kPi * (1.0 - std::cos(0.5)) * 2.0, 1e-4);
+  EXPECT_NEAR(power.directional, 4.0 * 10.0 * 10.0, 1e-3);
+  // A slanted sun meets the 10 x 1 m sides too.
+  scene.lights[2].direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+  EXPECT_NEAR(light_power(scene).directional, 4.0 * (10.0 * 10.0 + 1.0 * 10.0) / std::sqrt(2.0),
+              1e-3);
+}
+
+// Emitters are sampled by default only where they carry kEmitterShareToSample of the light: a
+// lamp that is the only light, or next to a weaker point light; not a small sign under the sun
+// (the street's case: sampling its signs doubled the field time for no visible change).
+TEST(FieldParams, EmittersAreSampledWhereTheyLightTheScene) {
+  Scene lamp = emitter_on_ground(0.5f, 8.0f, 10.0f);  // pi x 0.125 x 8 = pi W
+  EXPECT_EQ(default_field_params(lamp).emitter_samples, kSceneEmitterSamples);
+  // A point light of 4 pi x 2.25 = 9 pi W: the lamp's share is 10%, sampled.
+  lamp.lights.push_back(Light{"point", LightType::kPoint, glm::vec3(1.0f), 2.25f});
+  EXPECT_NEAR(light_power(lamp).emitters / light_power(lamp).total(), 0.1, 1e-4);
+  EXPECT_EQ(default_field_params(lamp).emitter_samples, kSceneEmitterSamples);
+  // 4 pi x 12.25 = 49 pi W: 2%, carried by the field.
+  lamp.lights[0].intensity = 12.25f;
+  EXPECT_EQ(default_field_params(lamp).emitter_samples, 0u);
+  // A 0.5 m sign under a sun of irradiance 3 over 100 x 100 m: 3.14 W against 30 kW.
+  Scene street = emitter_on_ground(0.5f, 8.0f, 100.0f);
+  Light sun{"sun", LightType::kDirectional, glm::vec3(1.0f), 3.0f};
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  street.lights.push_back(sun);
+  EXPECT_FALSE(emitters_worth_sampling(street));
+  EXPECT_EQ(default_field_params(street).emitter_samples, 0u);
+}
+
+// The rule on the repository's scenes: the emitter-lit ones keep sampling (their light is the
+// emitters'), the street's signs under the sun do not. Measured shares beside each.
+TEST(FieldParams, RepoScenesSampleEmittersWhereTheyAreTheLight) {
+  if (!std::filesystem::exists(DDGI_SHARED_SCENES_DIR)) GTEST_SKIP() << "no ../shared/scenes";
+  auto share = [](const char* name) -> std::optional<double> {
+    Result<Scene> scene = load_scene(std::string(DDGI_REPO_SCENES_DIR) + "/" + name);
+    EXPECT_TRUE(scene.ok()) << name << ": " << scene.error().message;
+    if (!scene.ok()) return std::nullopt;
+    const LightPower power = light_power(*scene);
+    const double s = power.total() > 0.0 ? power.emitters / power.total() : 0.0;
+    std::printf("%s: emitters %.4g W of %.4g W (share %.4g)\n", name, power.emitters, power.total(),
+                s);
+    EXPECT_EQ(emitters_worth_sampling(*scene), s >= kEmitterShareToSample) << name;
+    return s;
+  };
+  for (const char* lit_by_emitters :
+       {"cornell_kajiya.ddgi.json", "veach_ajar.ddgi.json", "modern_hall.ddgi.json"}) {
+    EXPECT_GE(share(lit_by_emitters).value_or(0.0), kEmitterShareToSample) << lit_by_emitters;
+  }
+  EXPECT_LT(share("street.ddgi.json").value_or(1.0), kEmitterShareToSample);
+  share("staircase.ddgi.json");  // printed: emitters beside a sun
+  share("cornell_nvpro.ddgi.json");
 }
 
 // A scene of a cube (side `cube`, on y 0 .. cube) on a square ground plane of side `ground`.
