@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <string_view>
 
 #include "encode/write_image.h"
 #include "metrics/flip.h"
@@ -40,6 +41,9 @@ double mean_ratio(const std::vector<float>& test, const std::vector<float>& refe
   return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
 }
 
+// A configuration's shadow field parameters are named with this in front ("shadow.texels=8").
+constexpr std::string_view kShadowPrefix = "shadow.";
+
 // Sorts one "name=value" of a configuration: a choice of the frame's (direct=, frame_downscale=,
 // shadow.NAME=) or a field assignment, checked later by the field's parameter table.
 Status add_assignment(Config& config, const std::string& assignment) {
@@ -58,8 +62,8 @@ Status add_assignment(Config& config, const std::string& assignment) {
           context + ": frame_downscale must be a whole number in [1, 8] (got '" + value + "')");
     }
     config.frame_downscale = static_cast<uint32_t>(n);
-  } else if (name.rfind("shadow.", 0) == 0) {
-    config.shadow_assignments.push_back(assignment.substr(7));
+  } else if (name.starts_with(kShadowPrefix)) {
+    config.shadow_assignments.push_back(assignment.substr(kShadowPrefix.size()));
   } else {
     config.assignments.push_back(assignment);
   }
@@ -88,7 +92,7 @@ Status check_frame_downscale(const EvalJob& job, const Config& config) {
 
 std::vector<std::string> Config::all_assignments() const {
   std::vector<std::string> all = assignments;
-  for (const std::string& a : shadow_assignments) all.push_back("shadow." + a);
+  for (const std::string& a : shadow_assignments) all.push_back(std::string(kShadowPrefix) + a);
   if (direct_mode != DirectMode::kTracedShadows) {
     all.push_back(std::string("direct=") + direct_mode_name(direct_mode));
   }

@@ -65,7 +65,7 @@ readbacks not included).
                         direct light of the frame and of probe-ray hits) [shadow-rays],
                         shadow.NAME=VALUE (a shadow field parameter, e.g. shadow.texels=8),
                         frame_downscale=N (drawn at 1/N the size each way, upscaled to be
-                        scored; not with --dynamic or --path)                    [1]
+                        scored; not with --dynamic or --path)
                                                                         [default:]
   --field NAME=VALUE    applied to every configuration first (repeatable)
   --out-dir DIR         also write every reference and frame as EXR there
