@@ -41,7 +41,10 @@ vec3 direct_light(Surface s, uint mode, uint samples, vec3 to_viewer, bool add_s
   if (mode == kDirectUnshadowed) return direct_lighting(s, false, rng);
   if (mode == kDirectTracedShadows && samples <= 1u) return direct_lighting(s, true, rng);
 
-  bool from_field = mode == kDirectShadowField || mode == kDirectAmbientOcclusion;
+  // With no punctual light the shadow-field mode has nothing to shadow: no field lookup (the AO
+  // mode still reads the field for the sky's occlusion).
+  bool from_field = (mode == kDirectShadowField && scene.light_count > 0u) ||
+                    mode == kDirectAmbientOcclusion;
   uint kept = 0u;
   bool overflow_traced = true;
   ShadowSample shadowing;
