@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Where the default field's remaining energy error comes from (docs/results/default-energy.md,
+# "H200, 2026-12-05: what moves the mean"): every repo and real scene at default settings and with
+# one visibility or sampling parameter changed at a time, at 384x216 against a 1024-spp
+# reference; the views outside 5% also with their own suspects, and the EXR frames of the
+# defaults. Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-eval` carried
+# (.devcarry, .gl). Usage: h200-diag.sh OUT
+set -euo pipefail
+out=${1:?OUT}
+[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
+mkdir -p ../shared && rm -rf ../shared/scenes && ln -s "$PWD/.devcarry/scenes" ../shared/scenes
+common="default:;bias 0.5:self_shadow_bias=0.5;exact probes:probe_bounces=64"
+common="$common;exact probes gamma 1:probe_bounces=64,irradiance_gamma=1"
+common="$common;exact probes gamma 1 512 rays:probe_bounces=64,irradiance_gamma=1,rays_per_probe=512"
+common="$common;gamma 1 512 rays:irradiance_gamma=1,rays_per_probe=512"
+run() {  # SCENE EXTRA_CONFIGS
+  mkdir -p "$out/exr-$1"
+  ddgi-eval "scenes/$1" --width 384 --height 216 --spp 1024 --warmup 256 --frames 3 \
+    --backend pipeline --out-dir "$out/exr-$1" --configs "$common${2:+;$2}" 2>&1 |
+    tee -a "$out/diag.txt"
+  find "$out/exr-$1" -name '*.exr' ! -name '*.reference*' ! -name '*.default*' -delete
+}
+# The views outside 5% first (docs/results/default-energy.md), then the others.
+run staircase.ddgi.json "bias 0.1:self_shadow_bias=0.1"
+run modern_hall.ddgi.json "no classification:classification=false;bias 0.8:self_shadow_bias=0.8"
+run cornell_nvpro.ddgi.json
+run box_on_floor.gltf
+for scene in cornell_box.gltf two_rooms_open.gltf cornell_kajiya.ddgi.json veach_ajar.ddgi.json \
+             living_room.ddgi.json white_box.gltf lights_punctual.ddgi.json street.ddgi.json; do
+  run "$scene"
+done
+# Only 8 files come back from a device run: the frames travel as one archive.
+tar czf "$out/exr.tgz" -C "$out" $(cd "$out" && ls -d exr-*) && rm -rf "$out"/exr-*
