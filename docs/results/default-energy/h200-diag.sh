@@ -37,4 +37,4 @@ for scene in cornell_box.gltf two_rooms_open.gltf cornell_kajiya.ddgi.json veach
   run "$scene"
 done
 # Only 8 files come back from a device run: the frames travel as one archive.
-tar czf "$out/exr.tgz" -C "$out" $(cd "$out" && ls -d exr-*) && rm -rf "$out"/exr-*
+(cd "$out" && tar czf exr.tgz exr-*) && rm -rf "${out:?}"/exr-*
