@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds what runs on a GPU host without our libraries (the lent H100/H200, a lean container):
 # Release binaries, their SPIR-V, and the non-glibc part of their shared-library closure,
-# into .devcarry/ (ignored by git). With --scenes, also copies ../shared/scenes beside it,
-# since only the repository travels. Usage: deploy/gpu-bundle.sh [--scenes] [targets...]
+# into .devcarry/ (ignored by git). With --scenes, also packs ../shared/scenes beside it
+# (.devcarry/scenes.tar.xz), since only the repository travels. Usage: deploy/gpu-bundle.sh [--scenes] [targets...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 with_scenes=0
@@ -28,6 +28,8 @@ done | sort -u | grep -vE '/(libc|libm|libpthread|libdl|librt|ld-linux-x86-64|li
 # The plots' font (server/tools/plot_raster.h): the GPU host may have none.
 mkdir -p .devcarry/fonts && cp /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf .devcarry/fonts/
 if [ "$with_scenes" = 1 ]; then
-  rm -rf .devcarry/scenes && cp -r ../shared/scenes .devcarry/scenes
+  # Packed: what a device call carries must stay under 64 MiB. deploy/gpu-run.sh unpacks it.
+  rm -rf .devcarry/scenes .devcarry/scenes.tar.xz
+  tar cJf .devcarry/scenes.tar.xz -C ../shared scenes
 fi
-du -sh .devcarry/bin .devcarry/lib .devcarry/scenes 2>/dev/null || true
+du -sh .devcarry/bin .devcarry/lib .devcarry/scenes.tar.xz 2>/dev/null || true

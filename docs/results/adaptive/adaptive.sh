@@ -8,8 +8,6 @@
 # `deploy/gpu-bundle.sh --scenes ddgi-eval` carried (.devcarry, .gl): adaptive.sh OUT
 set -euo pipefail
 out=${1:?OUT}
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s "$PWD/.devcarry/scenes" ../shared/scenes
 mkdir -p "$out/adaptive"
 configs='fixed rays:;adaptive 0.01:settle_threshold=0.01;adaptive 0.03:settle_threshold=0.03'
 run() {

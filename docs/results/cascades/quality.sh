@@ -1,8 +1,6 @@
 # Quality at the street's camera (one view): three cascades of 32x16x32 around the camera (ratio 2
 # and ratio 4) against one grid of the same probe count (192x8x32) fitted to the whole street.
 set -e
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s $PWD/.devcarry/scenes ../shared/scenes
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
 C="cascades ratio 2:counts=32,16,32,spacing=0.5,0.5,0.5,origin=-187.75,-3.75,-7.75,cascades=3"
 C="$C;cascades ratio 4:counts=32,16,32,spacing=0.5,0.5,0.5,origin=-187.75,-3.75,-7.75,cascades=3,cascade_spacing_ratio=4"
 C="$C;one grid 192x8x32:counts=192,8,32,spacing=2.0833,2.5,1.25,origin=-198.958,1.25,-19.375"

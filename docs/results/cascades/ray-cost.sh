@@ -2,8 +2,6 @@
 # in one device session, alternating, after warming the clocks. The old build is carried in
 # .devcarry/base/ (ddgi-bench and its spirv/ from a Release build of b58ae9a).
 set -e
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s $PWD/.devcarry/scenes ../shared/scenes
 A="scenes/staircase.ddgi.json scenes/veach_ajar.ddgi.json --grids 32x16x32 --rays 64,256 \
   --paths fused --frames 20 --warmup 8 --backend pipeline --field distance_texels=8 \
   --field fixed_rays=0 --field classification=false --field relocation_iterations=0"

@@ -2,8 +2,6 @@
 # H200 through the device tool, from the repository root, with the bundle
 # (deploy/gpu-bundle.sh ddgi-bench ddgi-eval) and the scenes carried.
 set -e
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s $PWD/.devcarry/scenes ../shared/scenes
 B="deploy/gpu-run.sh ddgi-bench"
 # 1. The field at ray cost after the volumes change (compare docs/results/field-at-ray-cost.md,
 #    run 2, thesis setup).

@@ -8,8 +8,6 @@
 # `deploy/gpu-bundle.sh --scenes ddgi-eval` carried (.devcarry, .gl). Usage: h200-diag.sh OUT
 set -euo pipefail
 out=${1:?OUT}
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s "$PWD/.devcarry/scenes" ../shared/scenes
 common="default:;bias 0.5:self_shadow_bias=0.5;exact probes:probe_bounces=64"
 common="$common;exact probes gamma 1:probe_bounces=64,irradiance_gamma=1"
 common="$common;exact probes gamma 1 512 rays:probe_bounces=64,irradiance_gamma=1,rays_per_probe=512"

@@ -1,6 +1,4 @@
 set -e
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s $PWD/.devcarry/scenes ../shared/scenes
 mkdir -p $OUT/dyn
 C='default:;hysteresis 0.9:hysteresis=0.9;hysteresis 0.8:hysteresis=0.8;hysteresis 0.6:hysteresis=0.6;no management:classification=false,relocation_iterations=0'
 A="--width 480 --height 270 --spp 1024 --warmup 64 --response-frames 200 --backend pipeline --pareto $OUT/dyn"

@@ -13,8 +13,6 @@
 set -euo pipefail
 out=${1:?OUT}
 batch=${2:?BATCH (1 or 2)}
-[ -d .devcarry/scenes ] || tar xJf .devcarry/scenes.tar.xz -C .devcarry
-mkdir -p ../shared && rm -rf ../shared/scenes && ln -s "$PWD/.devcarry/scenes" ../shared/scenes
 case $batch in
   1) scenes="scenes/cornell_box.gltf scenes/two_rooms_open.gltf scenes/veach_ajar.ddgi.json" ;;
   2) scenes="scenes/staircase.ddgi.json scenes/modern_hall.ddgi.json scenes/living_room.ddgi.json" ;;
