@@ -52,22 +52,34 @@ struct TexelSums {
   vec3 distance;
 };
 
+// One ray's share of an irradiance texel's and a distance texel's sums.
+void add_irradiance_ray(uint i, vec3 texel_direction, inout TexelSums sums) {
+  const float w = max(0.0, dot(texel_direction, chunk_direction_distance[i].xyz));
+  sums.irradiance += vec4(w * chunk_radiance[i].xyz, w);
+}
+
+void add_distance_ray(uint i, vec3 texel_direction, inout TexelSums sums) {
+  const vec4 ray = chunk_direction_distance[i];
+  const float w = pow(max(0.0, dot(texel_direction, ray.xyz)), field.distance_exponent);
+  sums.distance += vec3(w * ray.w, w * ray.w * ray.w, w);
+}
+
 // Adds the loaded chunk's first `count` rays to the sums of the irradiance texel facing
 // `irradiance_direction` and the distance texel facing `distance_direction` (each only where
 // this invocation has one: the distance map has more texels by default). Rays outside a
 // texel's hemisphere add exact zeros (no branch per ray): the sums equal the split kernels'.
+// Which texels an invocation has is decided once, outside the ray loops.
 TexelSums sum_chunk(uint count, bool irradiance, vec3 irradiance_direction, bool distance,
                     vec3 distance_direction, TexelSums sums) {
-  for (uint i = 0u; i < count; ++i) {
-    const vec4 ray = chunk_direction_distance[i];
-    if (irradiance) {
-      const float w = max(0.0, dot(irradiance_direction, ray.xyz));
-      sums.irradiance += vec4(w * chunk_radiance[i].xyz, w);
+  if (irradiance && distance) {
+    for (uint i = 0u; i < count; ++i) {
+      add_irradiance_ray(i, irradiance_direction, sums);
+      add_distance_ray(i, distance_direction, sums);
     }
-    if (distance) {
-      const float w = pow(max(0.0, dot(distance_direction, ray.xyz)), field.distance_exponent);
-      sums.distance += vec3(w * ray.w, w * ray.w * ray.w, w);
-    }
+  } else if (irradiance) {
+    for (uint i = 0u; i < count; ++i) add_irradiance_ray(i, irradiance_direction, sums);
+  } else if (distance) {
+    for (uint i = 0u; i < count; ++i) add_distance_ray(i, distance_direction, sums);
   }
   return sums;
 }
@@ -137,6 +149,8 @@ void main() {
     const uvec2 distance_ij = uvec2(t % nd, t / nd);
     const vec3 irradiance_direction = octahedral_texel_direction(irradiance_ij, ni);
     const vec3 distance_direction = octahedral_texel_direction(distance_ij, nd);
+    const vec4 irradiance_old = irradiance ? irradiance_history(probe, irradiance_ij) : vec4(0.0);
+    const vec4 distance_old = distance ? distance_history(probe, distance_ij) : vec4(0.0);
     TexelSums sums = TexelSums(vec4(0.0), vec3(0.0));
     for (uint start = 0u; start < n; start += kRayChunk) {
       // All rays fit one chunk (the common case): it is loaded for the first round only.
@@ -150,15 +164,16 @@ void main() {
     }
     if (irradiance) {
       vec2 seen;
-      const vec4 texel = blend_irradiance_texel(probe, irradiance_ij, sums.irradiance.xyz,
-                                                sums.irradiance.w, reset, adaptive, seen);
+      const vec4 texel = blend_irradiance_texel(probe, irradiance_ij, irradiance_old,
+                                                sums.irradiance.xyz, sums.irradiance.w, reset,
+                                                adaptive, seen);
       store_irradiance_border_copies(probe, irradiance_ij, texel);
       fresh_sum += seen.x * vec4(1.0, irradiance_direction);
       old_sum += seen.y * vec4(1.0, irradiance_direction);
     }
     if (distance) {
-      const vec4 texel =
-          blend_distance_texel(probe, distance_ij, sums.distance.xy, sums.distance.z, reset);
+      const vec4 texel = blend_distance_texel(probe, distance_ij, distance_old, sums.distance.xy,
+                                              sums.distance.z, reset);
       store_distance_border_copies(probe, distance_ij, texel);
     }
   }

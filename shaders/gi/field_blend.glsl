@@ -24,14 +24,23 @@ ivec2 texel_coord(uint probe, uvec2 ij, uint texels) {
   return ivec2(probe_tile_origin(probe, texels) + kAtlasBorder + ij);
 }
 
-// Blends the cosine-weighted radiance `sum` / `weight_sum` into irradiance texel ij; returns
-// the texel as stored (the history, unchanged, when no ray reached its hemisphere). `seen`, when
-// `measure` (an adaptive update): this update's estimate and the history as linear luminance
-// (what adaptive rays compare, field_blend.comp); zeros otherwise and without rays or history.
-vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bool reset,
-                            bool measure, out vec2 seen) {
-  const ivec2 coord = texel_coord(probe, ij, field.irradiance_texels);
-  const vec4 history = imageLoad(irradiance_out, coord);
+// Irradiance and distance texel ij of the probe as the previous updates left it. The blends
+// load it before they sum the rays, so that its latency passes while they do.
+vec4 irradiance_history(uint probe, uvec2 ij) {
+  return imageLoad(irradiance_out, texel_coord(probe, ij, field.irradiance_texels));
+}
+
+vec4 distance_history(uint probe, uvec2 ij) {
+  return imageLoad(distance_out, texel_coord(probe, ij, field.distance_texels));
+}
+
+// Blends the cosine-weighted radiance `sum` / `weight_sum` into irradiance texel ij (holding
+// `history`); returns the texel as stored (the history, unchanged, when no ray reached its
+// hemisphere). `seen`, when `measure` (an adaptive update): this update's estimate and the
+// history as linear luminance (what adaptive rays compare, field_blend.comp); zeros otherwise
+// and without rays or history.
+vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec4 history, vec3 sum, float weight_sum,
+                            bool reset, bool measure, out vec2 seen) {
   seen = vec2(0.0);
   // No ray in this texel's hemisphere this update (very few rays): keep the history.
   if (!(weight_sum > 0.0)) return history;
@@ -55,20 +64,19 @@ vec4 blend_irradiance_texel(uint probe, uvec2 ij, vec3 sum, float weight_sum, bo
     }
   }
   const vec4 texel = vec4(mix(fresh, old, hysteresis), 1.0);
-  imageStore(irradiance_out, coord, texel);
+  imageStore(irradiance_out, texel_coord(probe, ij, field.irradiance_texels), texel);
   return texel;
 }
 
-// Blends the weighted distance moments `sum` / `weight_sum` into distance texel ij; returns the
-// texel as stored.
-vec4 blend_distance_texel(uint probe, uvec2 ij, vec2 sum, float weight_sum, bool reset) {
-  const ivec2 coord = texel_coord(probe, ij, field.distance_texels);
-  const vec4 history = imageLoad(distance_out, coord);
+// Blends the weighted distance moments `sum` / `weight_sum` into distance texel ij (holding
+// `history`); returns the texel as stored.
+vec4 blend_distance_texel(uint probe, uvec2 ij, vec4 history, vec2 sum, float weight_sum,
+                          bool reset) {
   if (!(weight_sum > 0.0)) return history;
   const vec2 fresh = sum / weight_sum;
   const float hysteresis = reset ? 0.0 : field.distance_hysteresis;
   const vec4 texel = vec4(mix(fresh, history.rg, hysteresis), 0.0, 0.0);
-  imageStore(distance_out, coord, texel);
+  imageStore(distance_out, texel_coord(probe, ij, field.distance_texels), texel);
   return texel;
 }
 

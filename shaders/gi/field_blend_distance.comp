@@ -18,6 +18,7 @@ void main() {
   const vec3 texel_direction = octahedral_texel_direction(ij, texels);
 
   const uint first = probe * rays_per_probe_total() + field.fixed_rays;
+  const vec4 history = distance_history(probe, ij);
   vec2 sum = vec2(0.0);
   float weight_sum = 0.0;
   for (uint k = 0u; k < field.rays_per_probe; ++k) {
@@ -29,5 +30,5 @@ void main() {
     weight_sum += w;
   }
   const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
-  blend_distance_texel(probe, ij, sum, weight_sum, reset);
+  blend_distance_texel(probe, ij, history, sum, weight_sum, reset);
 }

@@ -18,6 +18,7 @@ void main() {
   const vec3 texel_direction = octahedral_texel_direction(ij, texels);
 
   const uint first = probe * rays_per_probe_total() + field.fixed_rays;
+  const vec4 history = irradiance_history(probe, ij);
   vec3 sum = vec3(0.0);
   float weight_sum = 0.0;
   for (uint k = 0u; k < field.rays_per_probe; ++k) {
@@ -29,5 +30,5 @@ void main() {
   }
   const bool reset = (probe_states[probe].flags & kProbeResetHistory) != 0u;
   vec2 seen;  // adaptive rays take the fused blend only (IrradianceField::check_path_fits)
-  blend_irradiance_texel(probe, ij, sum, weight_sum, reset, false, seen);
+  blend_irradiance_texel(probe, ij, history, sum, weight_sum, reset, false, seen);
 }
