@@ -356,11 +356,12 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
       sh ? probes * sizeof(gpu::ShProbe) + probe_maps : probes * probe_maps + sizeof(gpu::ShProbe);
   // Per probe: its state and the state's host-visible copy for scrolls, two probe-list entries
   // (the active list, the probes a scroll starts) and its drift (adaptive rays, after a 16-byte
-  // header); one zero tile to clear maps from.
+  // header); one zero tile to clear maps from. Per ray: what it brought back and, for the
+  // hit-light pass, its hit.
   return maps +
          probes * (2 * sizeof(gpu::ProbeState) + 2 * sizeof(uint32_t) + sizeof(gpu::ProbeDrift)) +
-         sizeof(glm::vec4) + largest_map_tile_bytes(p) + rays * sizeof(gpu::ProbeRay) +
-         sizeof(gpu::FieldConstants);
+         sizeof(glm::vec4) + largest_map_tile_bytes(p) +
+         rays * (sizeof(gpu::ProbeRay) + sizeof(gpu::ProbeRayHit)) + sizeof(gpu::FieldConstants);
 }
 
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& p) {

@@ -97,7 +97,8 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
                  {gpu::kFieldUpdateBindingDistanceOut, storage},
                  {gpu::kFieldUpdateBindingProbeList},
                  {gpu::kFieldUpdateBindingSurfels},
-                 {gpu::kFieldUpdateBindingDrift}};
+                 {gpu::kFieldUpdateBindingDrift},
+                 {gpu::kFieldUpdateBindingHits}};
   desc.query = {{gpu::kFieldQueryBindingQueries}, {gpu::kFieldQueryBindingAnswers}};
   desc.query_kernel = "field_query";
   desc.push_constant_bytes = sizeof(gpu::FieldDispatch);
@@ -107,6 +108,7 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
 
   backend_ = backend;
   DDGI_ASSIGN_OR_RETURN(trace_, update_kernel("field_trace", true, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(hit_light_, update_kernel("field_hit_light", false, kLinearWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_, update_kernel("field_blend", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_sh_, update_kernel("field_blend_sh", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(manage_, update_kernel("field_probes", false, kLinearWorkgroup));
@@ -176,6 +178,7 @@ Status IrradianceField::create_resources() {
   constants_.reset();
   probes_.reset();
   rays_.reset();
+  hits_.reset();
   surfels_.reset();
   probe_list_.reset();
   irradiance_.reset();
@@ -197,6 +200,9 @@ Status IrradianceField::create_resources() {
                                            vk::MemoryUsage::kDeviceLocal, "probe states"));
   DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
                                                   vk::MemoryUsage::kDeviceLocal, "probe rays"));
+  DDGI_ASSIGN_OR_RETURN(hits_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRayHit),
+                                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                  vk::MemoryUsage::kDeviceLocal, "probe ray hits"));
   const uint64_t sh_probes = params_.basis == ProbeBasis::kSh ? probes : 1;
   DDGI_ASSIGN_OR_RETURN(sh_, vk::Buffer::create(context_, sh_probes * sizeof(gpu::ShProbe), storage,
                                                 vk::MemoryUsage::kDeviceLocal, "SH probes"));
@@ -244,6 +250,7 @@ Status IrradianceField::create_resources() {
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
       .buffer(gpu::kFieldUpdateBindingProbeList, probe_list_)
       .buffer(gpu::kFieldUpdateBindingDrift, drift_)
+      .buffer(gpu::kFieldUpdateBindingHits, hits_)
       .apply(context_.device());
   if (update_path_ == FieldUpdatePath::kSplit) DDGI_TRY(create_surfels());
   return reset();
@@ -694,7 +701,12 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
                            : (paths ? trace_paths_ : trace_);
     passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
                                  {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
-                                 {&rays_}));
+                                 {&rays_, &hits_}));
+    if (!paths) {
+      passes.push_back(with_access(
+          linear_pass("field hit light", hit_light_, rays),
+          {&rays_, &hits_, &probes_, &probe_list_, &irradiance_, &distance_, &sh_}, {&rays_}));
+    }
     if (params_.basis == ProbeBasis::kSh) {
       passes.push_back(with_access(probe_workgroup_pass("field blend", blend_sh_, rays),
                                    {&rays_, &probes_, &sh_}, {&sh_, &probes_}));

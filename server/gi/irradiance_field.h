@@ -278,8 +278,9 @@ class IrradianceField {
   vk::Kernel trace_with_shadow_field_;  // only with a shadow field
   vk::Kernel trace_paths_;              // probe_bounces > 0: paths from each hit
   vk::Kernel trace_with_shadow_field_paths_;
-  vk::Kernel blend_;     // fused: both maps and their borders, per probe
-  vk::Kernel blend_sh_;  // SH fields (both paths): coefficients, per probe
+  vk::Kernel hit_light_;  // fused, without paths: the previous field's light at each hit
+  vk::Kernel blend_;      // fused: both maps and their borders, per probe
+  vk::Kernel blend_sh_;   // SH fields (both paths): coefficients, per probe
   vk::Kernel manage_;
   vk::Kernel raw_trace_;
   vk::Kernel trace_surfels_;  // the split path's kernels
@@ -294,6 +295,7 @@ class IrradianceField {
   vk::Buffer constants_;
   vk::Buffer probes_;
   vk::Buffer rays_;
+  vk::Buffer hits_;        // the fused path: from the trace to the hit-light pass
   vk::Buffer surfels_;     // the split path only
   vk::Buffer probe_list_;  // host-visible: the probes the next dispatches work on
   uint32_t probe_list_size_ = 0;

@@ -147,10 +147,13 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
   const ProbeStateCounts counts = field.probe_counts();
   const double blend_ms = table.pass_median("field blend") + table.pass_median("blend irradiance") +
                           table.pass_median("blend distance") + table.pass_median("borders");
-  // The fused trace lights its hits itself: no shade pass to show.
+  // The split path's shade pass; the fused path's hit-light pass (the previous field's light at
+  // each hit; none when paths are traced from the hits, which the trace lights itself).
   char shade[32] = "—";
   if (path == FieldUpdatePath::kSplit) {
     std::snprintf(shade, sizeof(shade), "%.3f", table.pass_median("field shade"));
+  } else if (p.probe_bounces == 0) {
+    std::snprintf(shade, sizeof(shade), "%.3f", table.pass_median("field hit light"));
   }
   std::printf(
       "| %s | %u | %dx%dx%d | %llu / %llu / %llu | %u | %s | %.1f | %.3f | %s | %.3f | %.3f | "

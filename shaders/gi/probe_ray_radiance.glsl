@@ -55,19 +55,26 @@ vec3 traced_irradiance(Surface s, inout Rng rng) {
 }
 #endif
 
-// `index`: the ray's index in the ray buffer (seeds its random numbers).
+// The light a probe ray's front-face hit adds of its own (emission, direct light, sampled
+// emitters). `index`: the ray's index in the ray buffer (seeds its random numbers).
+// Emitter light reaches surfaces by sampling (here and per pixel) when emitter_samples > 0,
+// not through the field: what probes see of an emitter would count it twice.
+vec3 probe_hit_own_light(Surface s, vec3 direction, uint index, out Rng rng) {
+  rng = rng_seed(index, field.update_index, 0x5bd1e995u);
+  return vertex_light(s, direction, rng);
+}
+
+// What the light arriving at a hit from the previous field is multiplied by.
+vec3 probe_hit_arriving_weight(Surface s) { return s.albedo * field.energy_conservation; }
+
 vec3 probe_hit_radiance(Surface s, vec3 direction, uint index) {
-  Rng rng = rng_seed(index, field.update_index, 0x5bd1e995u);
-  // Emitter light reaches surfaces by sampling (here and per pixel) when emitter_samples > 0,
-  // not through the field: what probes see of an emitter would count it twice.
-  const vec3 own = vertex_light(s, direction, rng);
+  Rng rng;
+  const vec3 own = probe_hit_own_light(s, direction, index, rng);
 #ifdef DDGI_PROBE_PATHS
-  const vec3 arriving = traced_irradiance(s, rng);
+  return own + s.albedo * traced_irradiance(s, rng);
 #else
-  const vec3 arriving =
-      field.energy_conservation * sample_irradiance(s.position, s.normal, -direction);
+  return own + probe_hit_arriving_weight(s) * sample_irradiance(s.position, s.normal, -direction);
 #endif
-  return own + s.albedo * arriving;
 }
 
 #endif

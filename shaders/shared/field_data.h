@@ -28,6 +28,7 @@ DDGI_CONST uint kFieldUpdateBindingDistanceOut = 2;    // image2D view of the di
 DDGI_CONST uint kFieldUpdateBindingProbeList = 3;      // uint probe index per list entry
 DDGI_CONST uint kFieldUpdateBindingSurfels = 4;        // ProbeSurfel per ray (split update only)
 DDGI_CONST uint kFieldUpdateBindingDrift = 5;          // 16-byte header, ProbeDrift per probe
+DDGI_CONST uint kFieldUpdateBindingHits = 6;           // ProbeRayHit per ray (fused update)
 
 // Atlas layout: probe p's tile is (p % tiles_per_row, p / tiles_per_row); a tile is the
 // octahedral map plus a one-texel border copied from the opposite edges.
@@ -69,6 +70,16 @@ struct ProbeState {
 struct ProbeRay {
   vec3 radiance;  // towards the probe (0 from back faces and from fixed rays, which are not lit)
   float distance;
+};
+
+// The fused update's lit front-face hits, from the trace to the hit-light pass
+// (field_hit_light.comp), which adds the light arriving there from the previous field: the
+// field query runs in a compute pass of its own, not inside the ray-tracing kernel (where its
+// registers and waits slowed the traversal of every ray: docs/results/field-at-ray-cost.md).
+struct ProbeRayHit {
+  vec3 weight;      // what the arriving irradiance is multiplied by (albedo, energy
+                    // conservation, glass crossed); zero: nothing to add
+  uint normal_oct;  // shading normal on the side the ray sees (pack_normal)
 };
 
 // Adaptive rays: what a probe's blends measured (field_blend.comp).

@@ -129,10 +129,12 @@ TEST_F(RenderCliTest, FieldUpdateTimeIsTheSumOfTheFieldPassesOnly) {
                             "--field counts=3,3,3 --shadow-field counts=3,3,3");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::map<std::string, double> rows = pass_rows(run.out);
-  for (const char* name : {"shadow trace", "field trace", "field blend", "primary"}) {
+  for (const char* name :
+       {"shadow trace", "field trace", "field hit light", "field blend", "primary"}) {
     ASSERT_TRUE(rows.count(name)) << name << " missing from\n" << run.out;
   }
-  const double field_sum = rows.at("field trace") + rows.at("field blend");
+  const double field_sum =
+      rows.at("field trace") + rows.at("field hit light") + rows.at("field blend");
   const double shadow_sum = rows.at("shadow trace") + rows.at("shadow rays") +
                             rows.at("shadow blend") + rows.at("shadow borders");
   const double field_ms = value_after(run.out, "field update: ");
