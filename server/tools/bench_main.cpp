@@ -38,7 +38,8 @@ every combination of --grids and --rays. Prints a markdown table (median millise
                         scene bounds with exactly these counts), separated by ';' [auto]
   --probes N            target probe count of 'auto' grids              [512]
   --rays LIST           rays per probe, comma-separated                 [64,128,256]
-  --paths LIST          field update paths, comma-separated: fused (the service's) and/or
+  --paths LIST          field update paths, comma-separated: fused (the service's: trace,
+                        hit light in the shade column, per-probe blend) and/or
                         split (trace, shade, per-texel blends, borders)  [fused]
   --backend B           auto | query | pipeline                        [auto]
   --field NAME=VALUE    any other field parameter (repeatable)
