@@ -5,7 +5,7 @@
 # the variants so that a clock drift shows as a difference between rounds, not variants.
 # Usage (on the GPU host, through deploy/gpu-run.sh): variants.sh OUT [ROUNDS] [VARIANT...]
 set -euo pipefail
-out=$1
+out=${1:?OUT}
 rounds=${2:-2}
 shift 2 || shift $#
 variants=("${@:-base}")
