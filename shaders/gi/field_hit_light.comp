@@ -17,9 +17,25 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingHits, scalar) readonl
   ProbeRayHit hits[];
 };
 
+// Invocation i takes ray i / probes of probe list entry i % probes: neighbouring invocations
+// trace the same direction from neighbouring probes, so their hits (and the probes and atlas
+// texels their queries read) lie close together.
+bool hit_light_item(out uint probe, out uint local) {
+  const uint id = linear_invocation(pc.row_width);
+  probe = 0u;
+  local = 0u;
+  if (id >= pc.count) return false;
+  const uint probes = pc.count / pc.per_probe;
+  const uint list_index = (pc.list_start + id % probes) % pc.list_size;
+  probe = probe_list[list_index];
+  local = id / probes;
+  select_probe_volume(probe);
+  return probe_lit_this_update(probe, list_index);
+}
+
 void main() {
   uint probe, local;
-  if (!field_lit_item(probe, local)) return;
+  if (!hit_light_item(probe, local)) return;
   const uint r = pc.first_ray + local;
   if (r < field.fixed_rays) return;  // not lit
   const uint index = probe * rays_per_probe_total() + r;
