@@ -17,9 +17,9 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingHits, scalar) readonl
   ProbeRayHit hits[];
 };
 
-// Invocation i takes ray i / probes of probe list entry i % probes: neighbouring invocations
-// trace the same direction from neighbouring probes, so their hits (and the probes and atlas
-// texels their queries read) lie close together.
+// Invocation i takes ray i / probes of probe list entry i % probes (ray-major, unlike the
+// other field passes): neighbouring invocations light the hits of one ray direction from
+// neighbouring probes, which lie close together and read the same probes and atlas texels.
 bool hit_light_item(out uint probe, out uint local) {
   const uint id = linear_invocation(pc.row_width);
   probe = 0u;
