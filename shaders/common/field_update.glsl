@@ -22,15 +22,24 @@ bool ray_hit_back_face(float d) { return (floatBitsToUint(d) & 0x80000000u) != 0
 // Hit distance; max_ray_distance on a miss.
 float ray_distance(float d) { return min(abs(d), field.max_ray_distance); }
 
+// The probe at entry `entry` of this dispatch's window of the probe list, and the entry's index
+// in the list. Selects the probe's volume (`field`).
+uint window_probe(uint entry, out uint list_index) {
+  list_index = (pc.list_start + entry) % pc.list_size;
+  const uint probe = probe_list[list_index];
+  select_probe_volume(probe);
+  return probe;
+}
+
 // False past the end of the dispatch. Selects the probe's volume (`field`).
 bool field_item(out uint probe, out uint local) {
   const uint id = linear_invocation(pc.row_width);
   probe = 0u;
   local = 0u;
   if (id >= pc.count) return false;
-  probe = probe_list[(pc.list_start + id / pc.per_probe) % pc.list_size];
+  uint list_index;
+  probe = window_probe(id / pc.per_probe, list_index);
   local = id % pc.per_probe;
-  select_probe_volume(probe);
   return true;
 }
 

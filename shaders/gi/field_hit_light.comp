@@ -26,10 +26,9 @@ bool hit_light_item(out uint probe, out uint local) {
   local = 0u;
   if (id >= pc.count) return false;
   const uint probes = pc.count / pc.per_probe;
-  const uint list_index = (pc.list_start + id % probes) % pc.list_size;
-  probe = probe_list[list_index];
+  uint list_index;
+  probe = window_probe(id % probes, list_index);
   local = id / probes;
-  select_probe_volume(probe);
   return probe_lit_this_update(probe, list_index);
 }
 
