@@ -200,9 +200,6 @@ Status IrradianceField::create_resources() {
                                            vk::MemoryUsage::kDeviceLocal, "probe states"));
   DDGI_ASSIGN_OR_RETURN(rays_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRay), storage,
                                                   vk::MemoryUsage::kDeviceLocal, "probe rays"));
-  DDGI_ASSIGN_OR_RETURN(hits_, vk::Buffer::create(context_, rays * sizeof(gpu::ProbeRayHit),
-                                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                  vk::MemoryUsage::kDeviceLocal, "probe ray hits"));
   const uint64_t sh_probes = params_.basis == ProbeBasis::kSh ? probes : 1;
   DDGI_ASSIGN_OR_RETURN(sh_, vk::Buffer::create(context_, sh_probes * sizeof(gpu::ShProbe), storage,
                                                 vk::MemoryUsage::kDeviceLocal, "SH probes"));
@@ -233,6 +230,7 @@ Status IrradianceField::create_resources() {
   DDGI_ASSIGN_OR_RETURN(
       distance_, vk::Image::create_2d(context_, layout_.distance_size.x, layout_.distance_size.y,
                                       VK_FORMAT_R32G32_SFLOAT, image_usage, "distance atlas"));
+  DDGI_TRY(create_hits(params_));
   gpu_bytes_ = context_.allocated_bytes() - before;
 
   vk::DescriptorWriter(sets_.sampling_set())
@@ -250,10 +248,23 @@ Status IrradianceField::create_resources() {
       .storage_image(gpu::kFieldUpdateBindingDistanceOut, distance_)
       .buffer(gpu::kFieldUpdateBindingProbeList, probe_list_)
       .buffer(gpu::kFieldUpdateBindingDrift, drift_)
-      .buffer(gpu::kFieldUpdateBindingHits, hits_)
       .apply(context_.device());
   if (update_path_ == FieldUpdatePath::kSplit) DDGI_TRY(create_surfels());
   return reset();
+}
+
+Status IrradianceField::create_hits(const IrradianceFieldParams& params) {
+  // One record where none is read: the binding must stay valid.
+  const uint64_t records = std::max<uint64_t>(probe_ray_hit_records(params), 1);
+  DDGI_ASSIGN_OR_RETURN(vk::Buffer hits,
+                        vk::Buffer::create(context_, records * sizeof(gpu::ProbeRayHit),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           vk::MemoryUsage::kDeviceLocal, "probe ray hits"));
+  hits_ = std::move(hits);
+  vk::DescriptorWriter(sets_.update_set())
+      .buffer(gpu::kFieldUpdateBindingHits, hits_)
+      .apply(context_.device());
+  return ok_status();
 }
 
 Status IrradianceField::create_surfels() {
@@ -534,8 +545,16 @@ Status IrradianceField::set_params(const IrradianceFieldParams& params) {
   DDGI_TRY(check_path_fits(params, update_path_));
   DDGI_TRY(create_path_kernels(params.probe_bounces > 0));  // before anything changes
   const IrradianceFieldParams old = params_;
+  const bool rebuild = grid_changed(old, params);
+  // probe_bounces alone changes which hit records the update needs, not the grid's resources.
+  if (!rebuild && probe_ray_hit_records(params) != probe_ray_hit_records(old)) {
+    DDGI_TRY(check_budget(context_, params, gpu_bytes_));
+    const uint64_t before = context_.allocated_bytes();
+    DDGI_TRY(create_hits(params));
+    gpu_bytes_ = gpu_bytes_ + context_.allocated_bytes() - before;  // the old records freed
+  }
   DDGI_TRY(replace_params<IrradianceFieldParams>(
-      params_, params, grid_changed(old, params),
+      params_, params, rebuild,
       [&](const IrradianceFieldParams& next) { return check_budget(context_, next, gpu_bytes_); },
       [&] { return create_resources(); }));
   if (old.origin != params.origin || old.spacing != params.spacing ||

@@ -177,6 +177,8 @@ class IrradianceField {
   Status create_layouts_and_kernels(vk::TraceBackend backend);
   Status create_resources();
   Status create_surfels();
+  // The hit records of `params` (probe_ray_hit_records), replacing the held ones.
+  Status create_hits(const IrradianceFieldParams& params);
   // The split path's kernels, built when it is first chosen (the service never uses it).
   Status create_split_kernels();
   // The fused trace with paths from each hit, built the first time they are `wanted`
@@ -295,7 +297,7 @@ class IrradianceField {
   vk::Buffer constants_;
   vk::Buffer probes_;
   vk::Buffer rays_;
-  vk::Buffer hits_;        // the fused path: from the trace to the hit-light pass
+  vk::Buffer hits_;        // the fused path's hit-light pass only
   vk::Buffer surfels_;     // the split path only
   vk::Buffer probe_list_;  // host-visible: the probes the next dispatches work on
   uint32_t probe_list_size_ = 0;
