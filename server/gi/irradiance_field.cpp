@@ -207,10 +207,11 @@ Status IrradianceField::create_resources() {
       drift_, vk::Buffer::create(context_, sizeof(glm::vec4) + probes * sizeof(gpu::ProbeDrift),
                                  storage, vk::MemoryUsage::kDeviceLocal, "probe drift"));
   // Two halves: the active probes the updates take, and the probes a scroll starts.
-  DDGI_ASSIGN_OR_RETURN(probe_list_, vk::Buffer::create(context_, 2 * probes * sizeof(uint32_t),
-                                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                        vk::MemoryUsage::kUpload, "probe list"));
+  DDGI_ASSIGN_OR_RETURN(
+      probe_list_,
+      vk::Buffer::create(context_, 2 * probes * sizeof(uint32_t),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::MemoryUsage::kDeviceUpload, "probe list"));
   DDGI_ASSIGN_OR_RETURN(scroll_states_,
                         vk::Buffer::create(context_, probes * sizeof(gpu::ProbeState),
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,

@@ -367,7 +367,7 @@ Status Kernel::create_ray_tracing(const KernelDesc& desc) {
   const VkDeviceSize hit_size = align_up(2 * record, base);
   DDGI_ASSIGN_OR_RETURN(sbt_, Buffer::create(*context_, raygen_size + miss_size + hit_size + base,
                                              VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR,
-                                             MemoryUsage::kUpload, name_ + " SBT"));
+                                             MemoryUsage::kDeviceUpload, name_ + " SBT"));
   const VkDeviceAddress start = align_up(sbt_.address(), base);
   uint8_t* mapped = static_cast<uint8_t*>(sbt_.mapped()) + (start - sbt_.address());
   auto copy_handle = [&](uint32_t group, VkDeviceSize offset) {

@@ -13,7 +13,7 @@ VkMemoryPropertyFlags required_flags(MemoryUsage usage) {
     case MemoryUsage::kDeviceLocal:
       return VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     case MemoryUsage::kUpload:
-      return VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    case MemoryUsage::kDeviceUpload:
     case MemoryUsage::kReadback:
       return VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   }
@@ -21,7 +21,14 @@ VkMemoryPropertyFlags required_flags(MemoryUsage usage) {
 }
 
 VkMemoryPropertyFlags preferred_flags(MemoryUsage usage) {
-  return usage == MemoryUsage::kReadback ? VK_MEMORY_PROPERTY_HOST_CACHED_BIT : 0;
+  switch (usage) {
+    case MemoryUsage::kReadback:
+      return VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    case MemoryUsage::kDeviceUpload:
+      return VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    default:
+      return 0;
+  }
 }
 
 }  // namespace

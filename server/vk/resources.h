@@ -16,8 +16,12 @@ namespace ddgi::vk {
 
 enum class MemoryUsage {
   kDeviceLocal,  // GPU only
-  kUpload,       // host-visible, coherent: CPU writes, GPU reads
-  kReadback,     // host-visible, cached: GPU writes, CPU reads
+  kUpload,       // host-visible, coherent: CPU writes, GPU reads (once: staging, builds)
+  // host-visible, coherent, and device-local where the GPU has such memory (resizable BAR):
+  // small buffers the CPU writes and shaders read over and over (the probe list every probe
+  // ray looks up, shader binding tables), which would otherwise be read across the bus
+  kDeviceUpload,
+  kReadback,  // host-visible, cached: GPU writes, CPU reads
 };
 
 class Buffer {
