@@ -49,6 +49,8 @@ every combination of --grids and --rays. Prints a markdown table (median millise
                         field's GPU ms in frames with a scroll (clearing, relocating and
                         classifying the entering plane, then the update) and in the others;
                         0: no scrolling                                  [0]
+  --shader-stats        also print what the driver reports of every kernel it compiled
+                        (registers, shared memory...: VK_KHR_pipeline_executable_properties)
   --device NAME         Vulkan device name filter
 )";
 
@@ -248,14 +250,16 @@ Status run(int argc, char** argv) {
       Flags flags, Flags::parse(argc, argv,
                                 {"width", "height", "frames", "warmup", "grids", "probes", "rays",
                                  "paths", "backend", "field", "device", "scroll-every"},
-                                {"help"}));
+                                {"help", "shader-stats"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
   }
   set_log_level(LogLevel::kWarning);
   DDGI_ASSIGN_OR_RETURN(BenchJob job, parse_job(flags));
-  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags));
+  vk::ContextOptions options;
+  options.shader_statistics = flags.has("shader-stats");
+  DDGI_ASSIGN_OR_RETURN(auto context, tools::context_from_flags(flags, options));
   std::printf("device: %s (%s), backend %s, %ux%u, %lld frames after %lld warm-up updates\n\n",
               context->caps().device_name.c_str(), context->caps().driver_name.c_str(),
               vk::backend_name(context->default_backend()), job.settings.width, job.settings.height,
@@ -278,6 +282,10 @@ Status run(int argc, char** argv) {
     }
   }
   if (!scroll_rows.empty()) print_scroll_table(scroll_rows);
+  if (flags.has("shader-stats")) {
+    std::printf("\nShader statistics\n\n%s",
+                vk::shader_statistics_table(context->shader_statistics()).c_str());
+  }
   return ok_status();
 }
 

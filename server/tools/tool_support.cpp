@@ -16,8 +16,8 @@ int tool_main(const char* tool, Status (*run)(int, char**), int argc, char** arg
   return status.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
 }
 
-Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags) {
-  vk::ContextOptions options;
+Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags,
+                                                        vk::ContextOptions options) {
   options.validation = flags.has("validation");
   DDGI_ASSIGN_OR_RETURN(options.device_filter, flags.get_string("device", ""));
   DDGI_ASSIGN_OR_RETURN(const std::string backend, flags.get_string("backend", "auto"));

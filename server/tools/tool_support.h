@@ -23,8 +23,9 @@ namespace ddgi::tools {
 int tool_main(const char* tool, Status (*run)(int, char**), int argc, char** argv);
 
 // A context from --backend (auto | query | pipeline), --device and --validation, where the
-// tool declared them.
-Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags);
+// tool declared them, over `options` (the rest of what the tool wants).
+Result<std::unique_ptr<vk::Context>> context_from_flags(const Flags& flags,
+                                                        vk::ContextOptions options = {});
 
 // Loads a scene, logging its warnings.
 Result<Scene> load_scene_logged(const std::string& path);

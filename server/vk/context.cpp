@@ -40,6 +40,8 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   VkPhysicalDeviceVulkan12Features features12{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_features{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
   VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   void** chain = &features2.pNext;
   auto link = [&chain](auto* s) {
@@ -54,7 +56,11 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   if (has_as) link(&as_features);
   if (has_rq) link(&rq_features);
   if (has_rt) link(&rt_features);
+  const bool has_executables =
+      has_extension(extensions, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+  if (has_executables) link(&executable_features);
   vkGetPhysicalDeviceFeatures2(device, &features2);
+  caps.pipeline_executable_info = has_executables && executable_features.pipelineExecutableInfo;
 
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt_props{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
@@ -239,7 +245,12 @@ Status Context::init(const ContextOptions& options) {
   DDGI_TRY(pick_physical_device(options.device_filter));
   DDGI_ASSIGN_OR_RETURN(default_backend_, choose_backend(caps_, options.backend));
   DDGI_TRY(pick_queue_family());
-  DDGI_TRY(create_device());
+  shader_statistics_enabled_ = options.shader_statistics && caps_.pipeline_executable_info;
+  if (options.shader_statistics && !shader_statistics_enabled_) {
+    LOG_WARNING << caps_.device_name
+                << " reports no shader statistics (no VK_KHR_pipeline_executable_properties)";
+  }
+  DDGI_TRY(create_device(shader_statistics_enabled_));
   load_device_functions(debug_utils);
 
   memory_budget_ = options.memory_budget_bytes;
@@ -342,11 +353,14 @@ Status Context::pick_queue_family() {
   return ok_status();
 }
 
-Status Context::create_device() {
+Status Context::create_device(bool shader_statistics) {
   std::vector<const char*> extensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
                                          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
   if (caps_.ray_query) extensions.push_back(VK_KHR_RAY_QUERY_EXTENSION_NAME);
   if (caps_.ray_tracing_pipeline) extensions.push_back(VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
+  if (shader_statistics) {
+    extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+  }
 
   VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt_features{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
@@ -381,6 +395,13 @@ Status Context::create_device() {
     *tail = &rt_features;
     tail = &rt_features.pNext;
   }
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_features{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  executable_features.pipelineExecutableInfo = VK_TRUE;
+  if (shader_statistics) {
+    *tail = &executable_features;
+    tail = &executable_features.pNext;
+  }
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -410,6 +431,10 @@ void Context::load_device_functions(bool debug_utils) {
     DDGI_LOAD_DEVICE_FN(vkCreateRayTracingPipelinesKHR);
     DDGI_LOAD_DEVICE_FN(vkGetRayTracingShaderGroupHandlesKHR);
     DDGI_LOAD_DEVICE_FN(vkCmdTraceRaysKHR);
+  }
+  if (shader_statistics_enabled_) {
+    DDGI_LOAD_DEVICE_FN(vkGetPipelineExecutablePropertiesKHR);
+    DDGI_LOAD_DEVICE_FN(vkGetPipelineExecutableStatisticsKHR);
   }
 #undef DDGI_LOAD_DEVICE_FN
   if (debug_utils) {

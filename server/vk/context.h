@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "vk/shader_statistics.h"
 
 namespace ddgi::vk {
 
@@ -52,6 +53,8 @@ struct DeviceCapabilities {
   uint32_t shader_group_handle_alignment = 0;
   uint32_t max_ray_recursion_depth = 0;
   uint32_t max_compute_workgroup_count_x = 65535;
+  // VK_KHR_pipeline_executable_properties: the driver reports what it compiled (registers...).
+  bool pipeline_executable_info = false;
 };
 
 // The pure part of device and backend selection, kept free of Vulkan calls so that unit tests
@@ -71,6 +74,9 @@ struct ContextOptions {
   std::string device_filter;            // substring of the device name; empty: best device
   std::optional<TraceBackend> backend;  // forced backend; nullopt: ray queries when present
   uint64_t memory_budget_bytes = 0;     // 0: no budget beyond the device's own limit
+  // Keep what the driver reports of every pipeline it compiles (ddgi-bench --shader-stats),
+  // where it has VK_KHR_pipeline_executable_properties; a diagnostic, off in the service.
+  bool shader_statistics = false;
 };
 
 // Extension entry points that the loader does not export.
@@ -82,6 +88,8 @@ struct DeviceFunctions {
   PFN_vkGetAccelerationStructureDeviceAddressKHR vkGetAccelerationStructureDeviceAddressKHR =
       nullptr;
   PFN_vkCreateRayTracingPipelinesKHR vkCreateRayTracingPipelinesKHR = nullptr;
+  PFN_vkGetPipelineExecutablePropertiesKHR vkGetPipelineExecutablePropertiesKHR = nullptr;
+  PFN_vkGetPipelineExecutableStatisticsKHR vkGetPipelineExecutableStatisticsKHR = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR vkGetRayTracingShaderGroupHandlesKHR = nullptr;
   PFN_vkCmdTraceRaysKHR vkCmdTraceRaysKHR = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT vkSetDebugUtilsObjectNameEXT = nullptr;
@@ -158,6 +166,12 @@ class Context {
   Result<uint32_t> find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                                     VkMemoryPropertyFlags preferred = 0) const;
 
+  // Shader statistics (ContextOptions::shader_statistics): whether pipelines are created to
+  // report them, keeping what the driver reports of `pipeline` (named `name`), and all kept.
+  bool captures_shader_statistics() const { return shader_statistics_enabled_; }
+  void keep_shader_statistics(VkPipeline pipeline, const std::string& name);
+  std::vector<ShaderStatistic> shader_statistics() const;
+
   // Validation messages (warnings and errors) seen since creation; tests require zero.
   uint32_t validation_message_count() const { return validation_messages_.load(); }
   // True when the validation layer is on and its messages reach the counter above.
@@ -173,7 +187,7 @@ class Context {
   // A compute queue family, the universal (graphics + compute) one when there is one.
   Status pick_queue_family();
   // The logical device with every tracing feature the device has, so either backend can run.
-  Status create_device();
+  Status create_device(bool shader_statistics);
   void load_device_functions(bool debug_utils);
   // A one-shot command slot for submit_and_wait (an idle one, or a new one), and its return.
   Result<std::unique_ptr<CommandSlot>> take_one_shot();
@@ -193,6 +207,9 @@ class Context {
   TraceBackend default_backend_ = TraceBackend::kRayQuery;
   bool validation_enabled_ = false;
   std::atomic<uint32_t> validation_messages_{0};
+  bool shader_statistics_enabled_ = false;
+  mutable std::mutex shader_statistics_mutex_;
+  std::vector<ShaderStatistic> shader_statistics_;
 
   // Held for vkQueueSubmit only (and the serial it assigns, so serials follow queue order).
   std::mutex queue_mutex_;

@@ -286,10 +286,14 @@ Status Kernel::create_compute(const KernelDesc& desc, const std::string& spirv_f
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = &specialization;
   info.layout = layout_;
+  if (context_->captures_shader_statistics()) {
+    info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+  }
   const VkResult result =
       vkCreateComputePipelines(context_->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   vkDestroyShaderModule(context_->device(), module, nullptr);
   if (result != VK_SUCCESS) return vk_error(result, "vkCreateComputePipelines(" + name_ + ")");
+  context_->keep_shader_statistics(pipeline_, name_);
   return ok_status();
 }
 
@@ -347,11 +351,15 @@ Status Kernel::create_ray_tracing(const KernelDesc& desc) {
   info.pGroups = groups.data();
   info.maxPipelineRayRecursionDepth = 1;
   info.layout = layout_;
+  if (context_->captures_shader_statistics()) {
+    info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+  }
   const VkResult result = context_->fn().vkCreateRayTracingPipelinesKHR(
       context_->device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   destroy_modules();
   if (result != VK_SUCCESS)
     return vk_error(result, "vkCreateRayTracingPipelinesKHR(" + name_ + ")");
+  context_->keep_shader_statistics(pipeline_, name_);
 
   // Shader binding table: one region per group kind, each record one handle.
   const DeviceCapabilities& caps = context_->caps();
