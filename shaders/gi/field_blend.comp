@@ -15,7 +15,10 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonl
   ProbeRay rays[];
 };
 
-const uint kRayChunk = 256u;                // 8 KiB of shared memory
+// 64 rays (2 KiB): with 256 the compiler kept the whole chunk loop in 255 registers and spilled,
+// four workgroups to an SM; with 64 it takes 80 registers and the blend ran in 0.59-0.77 of the
+// time on an H100 (docs/results/field-at-ray-cost.md), the extra loads and barriers included.
+const uint kRayChunk = 64u;
 shared vec4 chunk_direction_distance[kRayChunk];  // xyz: direction, w: distance as blended
 shared vec4 chunk_radiance[kRayChunk];            // xyz: radiance towards the probe
 layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingDrift, scalar) buffer Drifts {
@@ -153,7 +156,7 @@ void main() {
     const vec4 distance_old = distance ? distance_history(probe, distance_ij) : vec4(0.0);
     TexelSums sums = TexelSums(vec4(0.0), vec3(0.0));
     for (uint start = 0u; start < n; start += kRayChunk) {
-      // All rays fit one chunk (the common case): it is loaded for the first round only.
+      // A probe whose rays fit one chunk loads it for the first round only.
       if (n > kRayChunk || base == 0u) {
         barrier();  // the previous chunk's readers are done
         load_chunk(first, start);
