@@ -15,9 +15,9 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingRays, scalar) readonl
   ProbeRay rays[];
 };
 
-// 64 rays (2 KiB): with 256 the compiler kept the whole chunk loop in 255 registers and spilled,
-// four workgroups to an SM; with 64 it takes 80 registers and the blend ran in 0.59-0.77 of the
-// time on an H100 (docs/results/field-at-ray-cost.md), the extra loads and barriers included.
+// 64 rays (2 KiB): with 256 the compiler gave the blend 255 registers (four workgroups to an SM);
+// with 64 it takes 80 and the blend ran in 0.59-0.77 of the time on an H100
+// (docs/results/field-at-ray-cost.md), the extra loads and barriers included.
 const uint kRayChunk = 64u;
 shared vec4 chunk_direction_distance[kRayChunk];  // xyz: direction, w: distance as blended
 shared vec4 chunk_radiance[kRayChunk];            // xyz: radiance towards the probe
