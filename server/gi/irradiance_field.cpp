@@ -19,6 +19,9 @@ constexpr uint32_t kMaxTimedPasses = 64;
 
 using vk::with_access;
 constexpr glm::uvec3 kLinearWorkgroup{64, 1, 1};
+// field_hit_light: 128 invocations (a ray of 128 neighbouring probes) took 0.97-0.98 of the time
+// of 64 on an H100, 256 no less (docs/results/field-at-ray-cost.md).
+constexpr glm::uvec3 kHitLightWorkgroup{128, 1, 1};
 // field_blend: one workgroup per probe. 64 invocations: the default maps (8x8 irradiance, 16x16
 // distance texels) in four full rounds.
 constexpr glm::uvec3 kProbeWorkgroup{64, 1, 1};
@@ -108,7 +111,7 @@ Status IrradianceField::create_layouts_and_kernels(vk::TraceBackend backend) {
 
   backend_ = backend;
   DDGI_ASSIGN_OR_RETURN(trace_, update_kernel("field_trace", true, kLinearWorkgroup));
-  DDGI_ASSIGN_OR_RETURN(hit_light_, update_kernel("field_hit_light", false, kLinearWorkgroup));
+  DDGI_ASSIGN_OR_RETURN(hit_light_, update_kernel("field_hit_light", false, kHitLightWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_, update_kernel("field_blend", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(blend_sh_, update_kernel("field_blend_sh", false, kProbeWorkgroup));
   DDGI_ASSIGN_OR_RETURN(manage_, update_kernel("field_probes", false, kLinearWorkgroup));
