@@ -181,7 +181,7 @@ std::vector<PathCase> path_cases() {
   cases.push_back(make_case("one_ray"));
   cases.back().rays = 1;
   cases.back().updates = 8;
-  cases.push_back(make_case("1024_rays"));  // four shared-memory chunks per probe
+  cases.push_back(make_case("1024_rays"));  // sixteen 64-ray shared-memory chunks per probe
   cases.back().rays = 1024;
   cases.back().updates = 2;
   cases.push_back(make_case("emitter_sampling"));
