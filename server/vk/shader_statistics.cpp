@@ -91,11 +91,11 @@ std::string shader_statistics_table(const std::vector<ShaderStatistic>& statisti
   table += "\n|---|---|";
   for (size_t i = 0; i < names.size(); ++i) table += "---|";
   table += "\n";
-  for (const auto& [pipeline, executable] : rows) {
-    table += "| " + pipeline + " | " + executable + " |";
+  for (const std::pair<std::string, std::string>& row : rows) {
+    table += "| " + row.first + " | " + row.second + " |";
     for (const std::string& name : names) {
       const auto it = std::find_if(statistics.begin(), statistics.end(), [&](const auto& s) {
-        return s.pipeline == pipeline && s.executable == executable && s.name == name;
+        return s.pipeline == row.first && s.executable == row.second && s.name == name;
       });
       table += it == statistics.end() ? " |" : " " + it->value + " |";
     }
