@@ -345,7 +345,7 @@ uint64_t largest_map_tile_bytes(const IrradianceFieldParams& p) {
 }
 
 uint64_t probe_ray_hit_records(const IrradianceFieldParams& p) {
-  return p.probe_bounces > 0 ? 0 : probe_count(p) * (p.rays_per_probe + p.fixed_rays);
+  return p.probe_bounces > 0 ? 1 : probe_count(p) * (p.rays_per_probe + p.fixed_rays);
 }
 
 uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
@@ -360,13 +360,12 @@ uint64_t field_gpu_bytes(const IrradianceFieldParams& p) {
       sh ? probes * sizeof(gpu::ShProbe) + probe_maps : probes * probe_maps + sizeof(gpu::ShProbe);
   // Per probe: its state and the state's host-visible copy for scrolls, two probe-list entries
   // (the active list, the probes a scroll starts) and its drift (adaptive rays, after a 16-byte
-  // header); one zero tile to clear maps from. Per ray: what it brought back and, where the
-  // hit-light pass reads them, its hit (else one record, so that the binding stays valid).
+  // header); one zero tile to clear maps from. Per ray: what it brought back; and the hit
+  // records (probe_ray_hit_records).
   return maps +
          probes * (2 * sizeof(gpu::ProbeState) + 2 * sizeof(uint32_t) + sizeof(gpu::ProbeDrift)) +
          sizeof(glm::vec4) + largest_map_tile_bytes(p) + rays * sizeof(gpu::ProbeRay) +
-         std::max<uint64_t>(probe_ray_hit_records(p), 1) * sizeof(gpu::ProbeRayHit) +
-         sizeof(gpu::FieldConstants);
+         probe_ray_hit_records(p) * sizeof(gpu::ProbeRayHit) + sizeof(gpu::FieldConstants);
 }
 
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& p) {

@@ -289,8 +289,9 @@ AtlasLayout atlas_layout(const IrradianceFieldParams& params);
 std::array<float, 3> sh_band_scales(const IrradianceFieldParams& params);
 // Bytes of one probe's larger map tile, borders included (RGBA32F irradiance, RG32F distance).
 uint64_t largest_map_tile_bytes(const IrradianceFieldParams& params);
-// Probe-ray hit records the fused update's hit-light pass reads: one per ray where it reads the
-// field at probe-ray hits, none where the trace follows paths from them (probe_bounces > 0).
+// Probe-ray hit records a field holds for the fused update's hit-light pass: one per ray where it
+// reads the field at probe-ray hits, else (the trace follows paths from them, probe_bounces > 0)
+// one, so that the binding stays valid.
 uint64_t probe_ray_hit_records(const IrradianceFieldParams& params);
 // Bytes of GPU memory the field's atlases and ray buffers need (checked against the budget
 // before anything is allocated).

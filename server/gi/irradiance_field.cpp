@@ -258,12 +258,11 @@ Status IrradianceField::create_resources() {
 }
 
 Status IrradianceField::create_hits(const IrradianceFieldParams& params) {
-  // One record where none is read: the binding must stay valid.
-  const uint64_t records = std::max<uint64_t>(probe_ray_hit_records(params), 1);
-  DDGI_ASSIGN_OR_RETURN(vk::Buffer hits,
-                        vk::Buffer::create(context_, records * sizeof(gpu::ProbeRayHit),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                           vk::MemoryUsage::kDeviceLocal, "probe ray hits"));
+  DDGI_ASSIGN_OR_RETURN(
+      vk::Buffer hits,
+      vk::Buffer::create(context_, probe_ray_hit_records(params) * sizeof(gpu::ProbeRayHit),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::kDeviceLocal,
+                         "probe ray hits"));
   hits_ = std::move(hits);
   vk::DescriptorWriter(sets_.update_set())
       .buffer(gpu::kFieldUpdateBindingHits, hits_)
