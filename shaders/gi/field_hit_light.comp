@@ -17,9 +17,31 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingHits, scalar) readonl
   ProbeRayHit hits[];
 };
 
-// Invocation i takes ray i / probes of probe list entry i % probes (ray-major, unlike the
-// other field passes): neighbouring invocations light the hits of one ray direction from
-// neighbouring probes, which lie close together and read the same probes and atlas texels.
+// The order the window's entries are lit in: read as a grid of the field's counts (what they
+// are when every probe of a volume is traced, in ascending order), each group of four whole
+// layers is taken in 4x2x4 blocks, so that a warp's 32 invocations light the hits of one ray
+// direction from a block of neighbouring probes rather than a row: the hits, and the probes and
+// atlas texels their queries read, lie closer together (docs/results/field-at-ray-cost.md,
+// "hit-light order"). Entries past the last whole group, and grids whose rows do not divide into
+// blocks, keep the list's order. A permutation of [0, entries) for any list, so only the speed
+// depends on what the list holds.
+const uvec3 kHitLightBlock = uvec3(4u, 2u, 4u);
+uint hit_light_entry(uint entry, uint entries) {
+  const uvec3 b = kHitLightBlock;
+  const uvec2 n = uvec2(field.counts.xy);
+  const uint group = n.x * n.y * b.z;
+  if (n.x % b.x != 0u || n.y % b.y != 0u || entry >= entries / group * group) return entry;
+  const uint k = entry % group;
+  const uint w = k % (b.x * b.y * b.z), block = k / (b.x * b.y * b.z);
+  const uint x = (block % (n.x / b.x)) * b.x + w % b.x;
+  const uint y = (block / (n.x / b.x)) * b.y + (w / b.x) % b.y;
+  const uint z = w / (b.x * b.y);
+  return entry - k + x + n.x * (y + n.y * z);
+}
+
+// Invocation i takes ray i / probes of window entry hit_light_entry(i % probes) (ray-major,
+// unlike the other field passes): neighbouring invocations light the hits of one ray direction
+// from neighbouring probes, which lie close together and read the same probes and atlas texels.
 bool hit_light_item(out uint probe, out uint local) {
   const uint id = linear_invocation(pc.row_width);
   probe = 0u;
@@ -27,7 +49,7 @@ bool hit_light_item(out uint probe, out uint local) {
   if (id >= pc.count) return false;
   const uint probes = pc.count / pc.per_probe;
   uint list_index;
-  probe = window_probe(id % probes, list_index);
+  probe = window_probe(hit_light_entry(id % probes, probes), list_index);
   local = id / probes;
   return probe_lit_this_update(probe, list_index);
 }

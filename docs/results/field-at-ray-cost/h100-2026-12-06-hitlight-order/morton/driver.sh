@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Session driver (not committed): probes in Morton order (C++ list) against base and the
+# shader-only 4x2x4 remap of the hit-light pass; then service defaults base vs morton.
+set -uo pipefail
+mkdir -p /tmp/v
+bash docs/results/field-at-ray-cost/variants.sh /tmp/v 3 base t424 morton
+for round in 1 2; do
+  for v in base morton; do
+    bin=.devcarry/bin; [ "$v" = base ] || bin=.devcarry/variants/$v/bin
+    "$bin/ddgi-bench" scenes/staircase.ddgi.json scenes/veach_ajar.ddgi.json \
+      scenes/living_room.ddgi.json --grids 32x16x32 --rays 64,256 --paths fused --frames 20 \
+      --warmup 8 --backend pipeline > /tmp/v/service-$v-round$round.md
+  done
+done
+cat /tmp/v/device.txt
+tar czf "$OUT/v16.tgz" -C /tmp v
