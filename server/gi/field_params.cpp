@@ -125,8 +125,9 @@ const ParamTable<IrradianceFieldParams>& field_param_table() {
           param::number("backface_distance_scale", &P::backface_distance_scale, 0.0f, 1.0f,
                         "back-face distance factor"),
           param::number("self_shadow_bias", &P::self_shadow_bias, 0.0f, 2.0f, "2021 paper's B"),
-          param::number("probe_bounces", &P::probe_bounces, 0, 64,
-                        "path vertices after a probe-ray hit (0: read the field there)"),
+          param::number(
+              "probe_bounces", &P::probe_bounces, 0, 64,
+              "path vertices after a probe-ray hit, then the field (0: the field at the hit)"),
           param::number("energy_conservation", &P::energy_conservation, 0.0f, 1.0f,
                         "irradiance feedback factor"),
           param::number("weight_crush_threshold", &P::weight_crush_threshold, 0.0f, 1.0f,

@@ -120,9 +120,10 @@ struct IrradianceFieldParams {
   // Light arriving at probe-ray hits: 0 reads the previous field there (DDGI: one more bounce
   // per update, infinitely many over time); N > 0 traces a path of up to N further vertices
   // with next-event estimation at each and Russian roulette after the fourth (DDISH-GI's
-  // update: no feedback, so no lag in the bounces, at N traced rays more per probe ray), in
-  // [0, 64] (the roulette ends most paths long before). docs/sh-probes.md measures both; 0 is
-  // kept as the default.
+  // update: no lag in the first N bounces, at N traced rays more per probe ray), reading the
+  // previous field where a path reaches its N-th vertex (the later bounces' light, which a cut
+  // path would lose), in [0, 64] (the roulette ends most paths long before). docs/sh-probes.md
+  // measures both; 0 is kept as the default.
   uint32_t probe_bounces = 0;
   // Multiplies irradiance fed back into probe-ray shading, in [0, 1]. 1: energy conserving
   // (the furnace test converges to Le / (1 - rho)); lower it to damp runaway feedback.

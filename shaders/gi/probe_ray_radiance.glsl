@@ -2,7 +2,7 @@
 // the hit, and albedo times the light arriving there: the previous field's irradiance (DDGI's
 // feedback, one bounce per update) or, with probe_bounces > 0, a path traced on from the hit
 // with next-event estimation at every vertex (DDISH-GI's update; docs/sh-probes.md compares
-// them). Shared by the fused trace (field_trace.glsl) and the split shade (field_shade.glsl).
+// them), which reads the previous field where it reaches its last vertex. Shared by the fused trace (field_trace.glsl) and the split shade (field_shade.glsl).
 // The path form is a kernel variant of its own (DDGI_PROBE_PATHS, built only for fields that
 // ask for it): a second traversal inlined in every probe-ray kernel more than doubled their
 // compile time on lavapipe.
@@ -27,7 +27,9 @@ vec3 vertex_light(Surface s, vec3 direction, inout Rng rng) {
 #ifdef DDGI_PROBE_PATHS
 // Cosine-weighted mean radiance (M) arriving at `s` estimated by one path of at most
 // field.probe_bounces further vertices: at each, its own light (vertex_light) plus albedo times
-// the next. Russian roulette after the fourth vertex keeps it unbiased below the cap.
+// the next. Russian roulette after the fourth vertex keeps it unbiased below the cap; a path
+// that reaches the cap reads the previous field there for the light of every later bounce
+// (DDGI's feedback, past the traced vertices), so a short path does not cut that light off.
 vec3 traced_irradiance(Surface s, inout Rng rng) {
   vec3 sum = vec3(0.0), throughput = vec3(1.0);
   for (uint bounce = 0u; bounce < field.probe_bounces; ++bounce) {
@@ -45,6 +47,11 @@ vec3 traced_irradiance(Surface s, inout Rng rng) {
     if (!s.front_face) break;  // inside geometry: no light
     sum += throughput * vertex_light(s, direction, rng);
     throughput *= s.albedo;
+    if (bounce + 1u == field.probe_bounces) {
+      sum += throughput * field.energy_conservation *
+             sample_irradiance(s.position, s.normal, -direction);
+      break;
+    }
     if (bounce >= 3u) {
       const float survive = min(max_component(throughput), 1.0);
       if (!(rng_next(rng) < survive)) break;
