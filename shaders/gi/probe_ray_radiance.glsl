@@ -2,7 +2,8 @@
 // the hit, and albedo times the light arriving there: the previous field's irradiance (DDGI's
 // feedback, one bounce per update) or, with probe_bounces > 0, a path traced on from the hit
 // with next-event estimation at every vertex (DDISH-GI's update; docs/sh-probes.md compares
-// them), which reads the previous field where it reaches its last vertex. Shared by the fused trace (field_trace.glsl) and the split shade (field_shade.glsl).
+// them), which reads the previous field where it reaches its last vertex. Shared by the fused
+// trace (field_trace.glsl) and the split shade (field_shade.glsl).
 // The path form is a kernel variant of its own (DDGI_PROBE_PATHS, built only for fields that
 // ask for it): a second traversal inlined in every probe-ray kernel more than doubled their
 // compile time on lavapipe.

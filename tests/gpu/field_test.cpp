@@ -79,9 +79,9 @@ TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
 }
 
 // The same furnace with the probe rays' light traced as paths (probe_bounces) instead of read
-// from the previous field: no feedback, so every update is an unbiased estimate of the whole
-// series (Russian roulette, a cap far beyond it), and the probes converge as soon as the noise
-// is averaged.
+// from the previous field: no feedback short of the cap, far beyond where the Russian roulette
+// ends the paths, so every update is an unbiased estimate of the whole series, and the probes
+// converge as soon as the noise is averaged.
 class PathTracedFurnaceTest
     : public FieldTest,
       public ::testing::WithParamInterface<std::tuple<vk::TraceBackend, ProbeBasis>> {};
