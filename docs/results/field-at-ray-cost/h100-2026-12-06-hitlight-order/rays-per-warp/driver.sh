@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Session driver (not committed): hit light with several rays of each probe per warp.
+set -uo pipefail
+mkdir -p /tmp/v
+bash docs/results/field-at-ray-cost/variants.sh /tmp/v 3 base q2 q4
+cat /tmp/v/device.txt
+tar czf "$OUT/v20.tgz" -C /tmp v
