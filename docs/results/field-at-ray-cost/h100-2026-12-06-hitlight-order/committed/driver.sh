@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Session driver (not committed): hit-light blocks 4x2x4 (hl1) and 8x4x4 (hl2)
+# The session driver this call ran (kept as its record; .devcarry/variants/NAME held each variant's build): hit-light blocks 4x2x4 (hl1) and 8x4x4 (hl2)
 # shader-only 4x2x4 remap of the hit-light pass; then service defaults base vs morton.
 set -uo pipefail
 mkdir -p /tmp/v

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Session driver (not committed): probes in Morton order (C++ list) against base and the
+# The session driver this call ran (kept as its record; .devcarry/variants/NAME held each variant's build): probes in Morton order (C++ list) against base and the
 # shader-only 4x2x4 remap of the hit-light pass; then service defaults base vs morton.
 set -uo pipefail
 mkdir -p /tmp/v
