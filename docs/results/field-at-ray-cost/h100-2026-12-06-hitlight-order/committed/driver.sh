@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The session driver this call ran (kept as its record; .devcarry/variants/NAME held each variant's build): hit-light blocks 4x2x4 (hl1) and 8x4x4 (hl2)
-# shader-only 4x2x4 remap of the hit-light pass; then service defaults base vs morton.
+# then the service defaults, base against hl1.
 set -uo pipefail
 mkdir -p /tmp/v
 bash docs/results/field-at-ray-cost/variants.sh /tmp/v 3 base hl1 hl2
