@@ -25,6 +25,15 @@ vec3 vertex_light(Surface s, vec3 direction, inout Rng rng) {
   return s.emission + direct;
 }
 
+// What the light arriving at a hit from the previous field is multiplied by.
+vec3 probe_hit_arriving_weight(Surface s) { return s.albedo * field.energy_conservation; }
+
+// The light the previous field sends back from `s`, reached along `direction`: DDGI's feedback
+// at a probe-ray hit, and at the last vertex of a probe path.
+vec3 field_light_at(Surface s, vec3 direction) {
+  return probe_hit_arriving_weight(s) * sample_irradiance(s.position, s.normal, -direction);
+}
+
 #ifdef DDGI_PROBE_PATHS
 // Cosine-weighted mean radiance (M) arriving at `s` estimated by one path of at most
 // field.probe_bounces further vertices: at each, its own light (vertex_light) plus albedo times
@@ -47,12 +56,11 @@ vec3 traced_irradiance(Surface s, inout Rng rng) {
     s = surface_at(hit, direction);
     if (!s.front_face) break;  // inside geometry: no light
     sum += throughput * vertex_light(s, direction, rng);
-    throughput *= s.albedo;
     if (bounce + 1u == field.probe_bounces) {
-      sum += throughput * field.energy_conservation *
-             sample_irradiance(s.position, s.normal, -direction);
+      sum += throughput * field_light_at(s, direction);
       break;
     }
+    throughput *= s.albedo;
     if (bounce >= 3u) {
       const float survive = min(max_component(throughput), 1.0);
       if (!(rng_next(rng) < survive)) break;
@@ -72,16 +80,13 @@ vec3 probe_hit_own_light(Surface s, vec3 direction, uint index, out Rng rng) {
   return vertex_light(s, direction, rng);
 }
 
-// What the light arriving at a hit from the previous field is multiplied by.
-vec3 probe_hit_arriving_weight(Surface s) { return s.albedo * field.energy_conservation; }
-
 vec3 probe_hit_radiance(Surface s, vec3 direction, uint index) {
   Rng rng;
   const vec3 own = probe_hit_own_light(s, direction, index, rng);
 #ifdef DDGI_PROBE_PATHS
   return own + s.albedo * traced_irradiance(s, rng);
 #else
-  return own + probe_hit_arriving_weight(s) * sample_irradiance(s.position, s.normal, -direction);
+  return own + field_light_at(s, direction);
 #endif
 }
 
