@@ -66,13 +66,9 @@ std::vector<IrradianceQuery> furnace_queries() {
   return queries;
 }
 
-// A 2x2x2 grid in the white box, probes half a metre from the walls.
+// The white box's grid with 8 fixed rays.
 IrradianceFieldParams furnace_grid() {
-  IrradianceFieldParams p;
-  p.origin = {-0.5f, 0.5f, -0.5f};
-  p.spacing = glm::vec3(1.0f);
-  p.counts = {2, 2, 2};
-  p.rays_per_probe = 64;
+  IrradianceFieldParams p = white_box_grid();
   p.fixed_rays = 8;
   return p;
 }

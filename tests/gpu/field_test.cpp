@@ -28,16 +28,6 @@ std::vector<IrradianceQuery> furnace_queries() {
   return queries;
 }
 
-// A 2x2x2 grid of 64-ray probes 1 m apart inside the white box, where the furnace tests read it.
-IrradianceFieldParams furnace_params() {
-  IrradianceFieldParams params;
-  params.origin = {-0.5f, 0.5f, -0.5f};
-  params.spacing = {1.0f, 1.0f, 1.0f};
-  params.counts = {2, 2, 2};
-  params.rays_per_probe = 64;
-  return params;
-}
-
 // The largest relative error of any channel of any answer against `expected`.
 float worst_relative_error(const std::vector<glm::vec3>& answers, float expected) {
   float worst = 0.0f;
@@ -57,7 +47,7 @@ class FurnaceTest
 TEST_P(FurnaceTest, ConvergesToAnalyticRadiance) {
   const auto [rho, backend, basis] = GetParam();
   const float le = 1.0f;
-  IrradianceFieldParams params = furnace_params();
+  IrradianceFieldParams params = white_box_grid();
   params.hysteresis = 0.5f;  // converge in few updates; the bounce series needs ~log(0.01)/log(rho)
   params.basis = basis;
   FieldSetup s = make_field_setup(load_white_box(rho, le), params, backend);
@@ -91,7 +81,7 @@ TEST_P(PathTracedFurnaceTest, ConvergesToAnalyticRadiance) {
   // rho 0.5: the roulette's noise (it keeps 1 / 16 of the paths past the fourth vertex) stays
   // well below the bound; a bias (lost or doubled light) would not.
   const float le = 1.0f, rho = 0.5f;
-  IrradianceFieldParams params = furnace_params();
+  IrradianceFieldParams params = white_box_grid();
   params.basis = basis;
   params.probe_bounces = 64;
   params.hysteresis = 0.98f;  // averages the roulette's noise over ~100 updates
@@ -129,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(FieldTest, ShortProbePathsReadTheFieldWhereTheyEnd) {
   const float le = 1.0f, rho = 0.8f;
   for (uint32_t bounces : {1u, 2u}) {
-    IrradianceFieldParams params = furnace_params();
+    IrradianceFieldParams params = white_box_grid();
     params.probe_bounces = bounces;
     params.hysteresis = 0.5f;
     FieldSetup s = make_field_setup(load_white_box(rho, le), params, vk::TraceBackend::kRayQuery);
@@ -154,7 +144,7 @@ TEST_F(FieldTest, ShortProbePathsReadTheFieldWhereTheyEnd) {
 // gives the pass one record per ray again, which the furnace's feedback needs to converge.
 TEST_F(FieldTest, HitRecordsFollowProbeBounces) {
   const float le = 1.0f, rho = 0.5f;
-  IrradianceFieldParams params = furnace_params();
+  IrradianceFieldParams params = white_box_grid();
   params.hysteresis = 0.5f;
   params.probe_bounces = 64;
   FieldSetup s = make_field_setup(load_white_box(rho, le), params);

@@ -24,4 +24,13 @@ Scene load_white_box(float albedo, float emission) {
   return scene;
 }
 
+IrradianceFieldParams white_box_grid() {
+  IrradianceFieldParams params;
+  params.origin = {-0.5f, 0.5f, -0.5f};
+  params.spacing = glm::vec3(1.0f);
+  params.counts = {2, 2, 2};
+  params.rays_per_probe = 64;
+  return params;
+}
+
 }  // namespace ddgi::test

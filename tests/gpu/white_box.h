@@ -2,6 +2,7 @@
 // set in memory: the acceptance runs the furnace in the repo's box, not one built in code.
 #pragma once
 
+#include "gi/field_params.h"
 #include "scene/scene.h"
 
 namespace ddgi::test {
@@ -10,5 +11,9 @@ namespace ddgi::test {
 // (radiance) with diffuse albedo `albedo`, so the radiance everywhere inside is
 // emission / (1 - albedo). Fails the calling test when the file does not load as described.
 Scene load_white_box(float albedo, float emission);
+
+// A 2x2x2 grid of 64-ray probes 1 m apart inside the white box, half a metre from its walls,
+// where the furnace tests read the field.
+IrradianceFieldParams white_box_grid();
 
 }  // namespace ddgi::test
