@@ -250,7 +250,7 @@ Status Context::init(const ContextOptions& options) {
     LOG_WARNING << caps_.device_name
                 << " reports no shader statistics (no VK_KHR_pipeline_executable_properties)";
   }
-  DDGI_TRY(create_device(shader_statistics_enabled_));
+  DDGI_TRY(create_device());
   load_device_functions(debug_utils);
 
   memory_budget_ = options.memory_budget_bytes;
@@ -353,12 +353,12 @@ Status Context::pick_queue_family() {
   return ok_status();
 }
 
-Status Context::create_device(bool shader_statistics) {
+Status Context::create_device() {
   std::vector<const char*> extensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
                                          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
   if (caps_.ray_query) extensions.push_back(VK_KHR_RAY_QUERY_EXTENSION_NAME);
   if (caps_.ray_tracing_pipeline) extensions.push_back(VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
-  if (shader_statistics) {
+  if (shader_statistics_enabled_) {
     extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
   }
 
@@ -398,7 +398,7 @@ Status Context::create_device(bool shader_statistics) {
   VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_features{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
   executable_features.pipelineExecutableInfo = VK_TRUE;
-  if (shader_statistics) {
+  if (shader_statistics_enabled_) {
     *tail = &executable_features;
     tail = &executable_features.pNext;
   }

@@ -186,8 +186,9 @@ class Context {
   Status pick_physical_device(const std::string& device_filter);
   // A compute queue family, the universal (graphics + compute) one when there is one.
   Status pick_queue_family();
-  // The logical device with every tracing feature the device has, so either backend can run.
-  Status create_device(bool shader_statistics);
+  // The logical device with every tracing feature the device has, so either backend can run
+  // (and the shader statistics, where shader_statistics_enabled_ asks).
+  Status create_device();
   void load_device_functions(bool debug_utils);
   // A one-shot command slot for submit_and_wait (an idle one, or a new one), and its return.
   Result<std::unique_ptr<CommandSlot>> take_one_shot();
