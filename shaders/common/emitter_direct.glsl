@@ -1,7 +1,8 @@
-// Direct light from emissive triangles by next-event estimation: points sampled on the
-// emitters (area x luminance, shaders/common/emitters.glsl) with a shadow ray each. The option
-// the irradiance field is measured against: with it on, emitter light reaches surfaces directly
-// instead of through probe rays that hit the emitters (IrradianceFieldParams::emitter_sampling).
+// Direct light from emissive triangles by next-event estimation: an emitter triangle picked by
+// area x luminance, a direction in the solid angle it subtends (shaders/common/emitters.glsl),
+// a shadow ray each. The option the irradiance field is measured against: with it on, emitter
+// light reaches surfaces directly instead of through probe rays that hit the emitters
+// (IrradianceFieldParams::emitter_sampling).
 #ifndef DDGI_COMMON_EMITTER_DIRECT_GLSL
 #define DDGI_COMMON_EMITTER_DIRECT_GLSL
 
@@ -16,19 +17,19 @@ vec3 emitter_direct(Surface s, uint samples, inout Rng rng) {
   for (uint i = 0u; i < samples; ++i) {
     const float u = rng_next(rng);
     const vec2 uv = vec2(rng_next(rng), rng_next(rng));
-    const EmitterSample e = sample_emitter(s.position, u, uv);
+    const EmitterDirection e = sample_emitter_direction(s.position, u, uv);
+    if (all(equal(e.weight, vec3(0.0)))) continue;
     const vec3 to_emitter = e.position - origin;
     const float d2 = dot(to_emitter, to_emitter);
-    if (!(d2 > 0.0) || !(e.area_pdf > 0.0)) continue;
+    if (!(d2 > 0.0)) continue;
     const float d = sqrt(d2);
     const vec3 l = to_emitter / d;
     const float cos_receiver = dot(s.normal, l);
-    const float cos_emitter = dot(e.normal, -l);
-    if (cos_receiver <= 0.0 || cos_emitter <= 0.0 || dot(s.geometric_normal, l) <= 0.0) continue;
+    if (cos_receiver <= 0.0 || dot(s.geometric_normal, l) <= 0.0) continue;
     // Stop short of the emitter so its own surface does not count as an occluder.
     const vec3 visibility = trace_transmittance(origin, l, 0.0, d * (1.0 - 1e-4));
-    // Radiance x cos x cos' / d^2, divided by the area density of the sample.
-    sum += e.radiance * visibility * (cos_receiver * cos_emitter / (d2 * e.area_pdf));
+    // Radiance x cos over the direction's solid-angle density.
+    sum += e.weight * visibility * cos_receiver;
   }
   return sanitize_radiance(sum / float(samples) * s.albedo * kInvPi);
 }
