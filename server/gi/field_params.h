@@ -177,16 +177,17 @@ struct IrradianceFieldParams {
 
   // --- Emitters ---------------------------------------------------------------------------------
   // Light from emissive surfaces, sampled directly instead of carried by the field: each pixel
-  // and each probe-ray hit takes this many samples on the emitters (area x luminance, one
-  // shadow ray each), and probe rays no longer carry the emission they see (it would count
-  // twice). 0: off, emitter light reaches surfaces through the field (probe rays hit the
-  // emitters, the 2021 paper's way). [0, 64]. 0 here; a scene whose emissive surfaces put out
-  // kEmitterShareToSample of its light or more (gi/light_power.h) gets kSceneEmitterSamples from
-  // default_field_params: carried by the field, a small bright emitter
-  // loses light (few probe rays hit it, and the perceptual encoding's temporal blend is a power
-  // mean that undercounts rare bright hits: -37% in DefaultEnergyTest's room, -16 to -19% on
-  // cornell_kajiya and veach_ajar, docs/results/default-energy.md) and a probe grid cannot hold
-  // its steep near field. Sampled, it is noisier per pixel but unbiased.
+  // and each probe-ray hit takes this many samples on the emitters (a triangle picked by area x
+  // luminance, a direction in the solid angle it subtends, one shadow ray each), and probe rays
+  // no longer carry the emission they see (it would count twice). 0: off, emitter light reaches
+  // surfaces through the field (probe rays hit the emitters, the 2021 paper's way). [0, 64]. 0
+  // here; a scene whose emissive surfaces put out kEmitterShareToSample of its light or more
+  // (gi/light_power.h) gets kSceneEmitterSamples from default_field_params: carried by the
+  // field, a small bright emitter loses light (few probe rays hit it, and the perceptual
+  // encoding's temporal blend is a power mean that undercounts rare bright hits: -37% in
+  // DefaultEnergyTest's room, -16 to -19% on cornell_kajiya and veach_ajar,
+  // docs/results/default-energy.md) and a probe grid cannot hold its steep near field. Sampled,
+  // it is noisier per pixel but unbiased.
   uint32_t emitter_samples = 0;
 
   // --- Direct light at probe-ray hits (docs/shadow-field.md, "Probe rays") -------------------
