@@ -18,6 +18,28 @@
 namespace ddgi::test {
 namespace {
 
+// A camera `height` above floor point `at`, looking straight down; image columns run along +x
+// and rows along +z.
+Camera camera_looking_down(glm::vec3 at, float height, float yfov) {
+  Camera camera;
+  camera.position = at + glm::vec3(0.0f, height, 0.0f);
+  camera.forward = {0.0f, -1.0f, 0.0f};
+  camera.up = {0.0f, 0.0f, -1.0f};
+  camera.yfov = yfov;
+  return camera;
+}
+
+// Four probes over an open floor: the direct view these tests read does not depend on them.
+IrradianceFieldParams small_open_field(uint32_t emitter_samples) {
+  IrradianceFieldParams p;
+  p.origin = {-1.0f, 0.5f, -1.0f};
+  p.spacing = {2.0f, 1.0f, 2.0f};
+  p.counts = {2, 1, 2};
+  p.rays_per_probe = 16;
+  p.emitter_samples = emitter_samples;
+  return p;
+}
+
 class EmitterSamplingTest : public GpuTest {
  protected:
   // The frame of `scene` seen from its camera (RGBA float per pixel), after a warmed-up field.
@@ -66,19 +88,9 @@ TEST_F(EmitterSamplingTest, SampledEmitterLightMatchesTheFormFactor) {
   const int emitter = add_material(scene, glm::vec3(0.0f), glm::vec3(100.0f), "emitter");
   add_quad(scene, {-0.05f, 1, -0.05f}, {0.05f, 1, -0.05f}, {0.05f, 1, 0.05f}, {-0.05f, 1, 0.05f},
            emitter);  // counter-clockwise seen from below: facing down
-  Camera camera;
-  camera.position = {0.0f, 0.5f, 0.0f};
-  camera.forward = {0.0f, -1.0f, 0.0f};
-  camera.up = {0.0f, 0.0f, -1.0f};
-  camera.yfov = 0.04f;
-  scene.cameras.push_back(camera);
-  IrradianceFieldParams p;
-  p.origin = {-1.0f, 0.5f, -1.0f};
-  p.spacing = {2.0f, 1.0f, 2.0f};
-  p.counts = {2, 1, 2};
-  p.rays_per_probe = 16;
-  p.emitter_samples = 1;
-  const glm::vec3 direct = mean_radiance(scene, p, View::kDirect);
+  scene.cameras.push_back(camera_looking_down({0.0f, 0.0f, 0.0f}, 0.5f, 0.04f));
+  const glm::vec3 direct =
+      mean_radiance(scene, small_open_field(/*emitter_samples=*/64), View::kDirect);
   const float expected = 0.5f / 3.14159265f * 1.0f;
   EXPECT_NEAR(direct.x, expected, 0.03f * expected);
   EXPECT_NEAR(direct.y, expected, 0.03f * expected);
@@ -117,20 +129,10 @@ TEST_F(EmitterSamplingTest, OneSamplePerPixelMatchesTheNearFieldOfAnEmitter) {
   add_quad(scene, triangle[0], triangle[1], triangle[2], triangle[2], emitter);       // half empty
   const glm::dvec3 centre(0.02, 0.0, 0.0);
   const double height = 0.5, yfov = 0.04;
-  Camera camera;
-  camera.position = glm::vec3(centre) + glm::vec3(0.0f, float(height), 0.0f);
-  camera.forward = {0.0f, -1.0f, 0.0f};
-  camera.up = {0.0f, 0.0f, -1.0f};  // image columns along +x, rows along +z
-  camera.yfov = float(yfov);
-  scene.cameras.push_back(camera);
-  IrradianceFieldParams p;
-  p.origin = {-1.0f, 0.5f, -1.0f};
-  p.spacing = {2.0f, 1.0f, 2.0f};
-  p.counts = {2, 1, 2};
-  p.rays_per_probe = 16;
-  p.emitter_samples = 1;
+  scene.cameras.push_back(camera_looking_down(glm::vec3(centre), float(height), float(yfov)));
   const uint32_t size = 32;
-  const std::vector<float> frame = render_view(scene, p, View::kDirect, size);
+  const std::vector<float> frame =
+      render_view(scene, small_open_field(/*emitter_samples=*/1), View::kDirect, size);
   ASSERT_EQ(frame.size(), size_t(size) * size * 4);
 
   // Pixel centres lie on a uniform grid of the floor square the camera sees.
