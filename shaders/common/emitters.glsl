@@ -110,7 +110,8 @@ EmitterDirection sample_emitter_direction(vec3 receiver, float u_pick, vec2 u) {
     const float distance = dot(e.p0 - receiver, e.normal) / dot(direction, e.normal);
     result.position = receiver + distance * direction;
     bary = emitter_barycentrics(e, result.position);
-    inverse_density = t.solid_angle / pick;
+    // A direction along the plane (rounding at the triangle's rim) reaches no point of it.
+    inverse_density = distance > 0.0 && distance < kFloatMax ? t.solid_angle / pick : 0.0;
   } else {
     bary = sample_triangle(u);
     result.position = e.p0 * (1.0 - bary.x - bary.y) + e.p1 * bary.x + e.p2 * bary.y;
@@ -118,7 +119,7 @@ EmitterDirection sample_emitter_direction(vec3 receiver, float u_pick, vec2 u) {
     const float d2 = dot(to_emitter, to_emitter);
     inverse_density = e.area * abs(dot(e.normal, to_emitter)) * inversesqrt(d2) / (d2 * pick);
   }
-  vec3 normal;
+  vec3 normal;  // not needed here: the receiver's cosine is the caller's
   const vec3 radiance = emitted_towards(e, bary, result.position, receiver, normal);
   result.weight = inverse_density > 0.0 ? radiance * inverse_density : vec3(0.0);
   return result;
