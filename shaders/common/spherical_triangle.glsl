@@ -7,13 +7,10 @@
 
 #include "common/math.glsl"
 
-// The triangle of unit directions (a, b, c) on the sphere around a point: its solid angle, the
-// interior angle at a and the cosine of the side from a to b, what sampling needs.
+// The triangle of unit directions (a, b, c) on the sphere around a point, and its solid angle.
 struct SphericalTriangle {
   vec3 a, b, c;
   float solid_angle;
-  float alpha;
-  float cos_ab;
 };
 
 // Unit vector of `v` orthogonal to unit `n` (the tangent at n of the great arc towards v).
@@ -30,22 +27,22 @@ SphericalTriangle spherical_triangle(vec3 a, vec3 b, vec3 c) {
   t.c = c;
   const float triple = abs(dot(a, cross(b, c)));
   t.solid_angle = 2.0 * atan(triple, 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
-  t.alpha = acos(clamp(dot(arc_tangent(a, b), arc_tangent(a, c)), -1.0, 1.0));
-  t.cos_ab = dot(a, b);
   return t;
 }
 
 // A direction distributed uniformly over the triangle (density 1 / solid_angle) for u in
 // [0, 1)^2: u.x picks the sub-triangle (a, b, c') of area u.x x solid_angle, u.y a point on the
-// arc from b to c'.
+// arc from b to c'. The interior angle at a is found here, not with the solid angle: a caller
+// that only needs the solid angle (to choose area sampling instead) does not pay for it.
 vec3 sample_spherical_triangle(SphericalTriangle t, vec2 u) {
+  const float alpha = acos(clamp(dot(arc_tangent(t.a, t.b), arc_tangent(t.a, t.c)), -1.0, 1.0));
   const float area = u.x * t.solid_angle;
-  const float s = sin(area - t.alpha);
-  const float c = cos(area - t.alpha);
-  const float cos_alpha = cos(t.alpha);
-  const float sin_alpha = sin(t.alpha);
+  const float s = sin(area - alpha);
+  const float c = cos(area - alpha);
+  const float cos_alpha = cos(alpha);
+  const float sin_alpha = sin(alpha);
   const float p = c - cos_alpha;
-  const float q = s + sin_alpha * t.cos_ab;
+  const float q = s + sin_alpha * dot(t.a, t.b);
   // The cosine of the arc from a to c' (the sub-triangle's side b).
   const float cos_b =
       clamp(((q * c - p * s) * cos_alpha - q) / ((q * s + p * c) * sin_alpha), -1.0, 1.0);
