@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -56,6 +57,12 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --budget-frame WxH        the frame a time budget pays for          [1920x1080]
   --budget-cache DIR        keep budget calibrations in DIR too (created if missing), so a
                             restarted server does not calibrate a scene again  [memory only]
+  --energy-calibration M    auto | on | off: a session that sets none of probe_bounces,
+                            self_shadow_bias, irradiance_gamma gets those of the settings,
+                            measured on load (cached like a budget's), that keep its frame's
+                            light within 3% of a path tracer's (docs/service.md, "Energy
+                            calibration"); auto: on a GPU, off on a CPU device (lavapipe),
+                            where it takes about a minute per scene  [auto]
   --device NAME             Vulkan device whose name contains NAME
   --backend B               auto | query | pipeline                  [auto]
   --validation              Vulkan validation layers (any message is logged)
@@ -126,6 +133,7 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "budget-ms",
                        "budget-frame",
                        "budget-cache",
+                       "energy-calibration",
                        "device",
                        "backend",
                        "log-level"},
@@ -217,6 +225,14 @@ Result<ServerOptions> server_options(const Flags& flags) {
   return options;
 }
 
+// --energy-calibration: on or off as given; nothing for auto (decided by the device).
+Result<std::optional<bool>> energy_calibration_mode(const Flags& flags) {
+  DDGI_ASSIGN_OR_RETURN(const std::string mode, flags.get_string("energy-calibration", "auto"));
+  if (mode == "auto") return std::optional<bool>();
+  if (mode == "on" || mode == "off") return std::optional<bool>(mode == "on");
+  return invalid_argument("--energy-calibration must be auto, on or off (got '" + mode + "')");
+}
+
 Result<vk::ContextOptions> context_options(const Flags& flags, uint64_t memory_budget_bytes) {
   vk::ContextOptions options;
   options.validation = flags.has("validation");
@@ -291,12 +307,18 @@ Status run(int argc, char** argv) {
     g_device_lost = true;
     kill(getpid(), kDeviceLostSignal);  // wakes serve_until_stopped
   };
+  DDGI_ASSIGN_OR_RETURN(const std::optional<bool> energy, energy_calibration_mode(flags));
   DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
   DDGI_ASSIGN_OR_RETURN(const vk::ContextOptions vulkan,
                         context_options(flags, options.limits.gpu_memory_budget_bytes));
   const sigset_t signals = block_stop_signals();
 
   DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(vulkan));
+  options.energy_calibration = energy.value_or(!context->caps().cpu);
+  if (!energy && context->caps().cpu) {
+    LOG_INFO << "energy calibration off on a CPU device (" << context->caps().device_name
+             << "), where it takes about a minute per scene: --energy-calibration on turns it on";
+  }
   DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
   if (!port_file.empty()) write_port_file(port_file, server->port());
   std::printf("ddgi-server: listening on port %d\n", server->port());

@@ -53,6 +53,8 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.encoder = server->encoder_.get();
   server->budget_.default_ms = options.default_budget_ms;
   server->budget_.calibration = options.budget_calibration;
+  server->budget_.energy = options.energy_calibration;
+  server->budget_.energy_calibration = options.energy_options;
   if (const Status kept = server->budget_.cache.persist_in(options.budget_cache_dir); !kept.ok()) {
     return invalid_argument("--budget-cache: " + kept.error().message);
   }

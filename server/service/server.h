@@ -41,6 +41,12 @@ struct ServerOptions {
   double default_budget_ms = 0.0;
   tools::CalibrationOptions budget_calibration;
   std::string budget_cache_dir;  // calibrations kept on disk too (--budget-cache); empty: none
+  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters.
+  // ddgi-server turns it on on a GPU (--energy-calibration auto, its default); off here, so that
+  // a test or an embedder that did not ask pays no calibration on load.
+  bool energy_calibration = false;
+  // How it measures (tests shrink it).
+  tools::CalibrationOptions energy_options = tools::energy_calibration_options();
   // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
   // health NOT_SERVING, refused new work and ended every session with the loss as their status;
   // on the thread that saw the loss, which it must not block. ddgi-server exits then, so its

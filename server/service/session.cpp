@@ -304,6 +304,7 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
             DDGI_TRY(field()->set_params(params));
             state_.scene->end_budget();  // set by hand: no longer the budget's choice
           }
+          if (tools::sets_energy_params(assignments)) state_.scene->end_energy();
           to_proto(*state_.scene, loop_.applying_seq(), reply);
         }
         LOG_INFO << "field parameters changed session=" << state_.id

@@ -12,6 +12,7 @@
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
 #include "tools/field_budget.h"
+#include "tools/field_energy.h"
 
 namespace ddgi::service {
 
@@ -25,6 +26,10 @@ inline constexpr const char* kBudgetParamHelp =
 struct BudgetService {
   double default_ms = 0.0;  // sessions that set no budget_ms (--budget-ms); 0: none
   tools::CalibrationOptions calibration;
+  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters:
+  // on with ddgi-server's --energy-calibration (its default). Its calibrations share the cache.
+  bool energy = false;
+  tools::CalibrationOptions energy_calibration;
   tools::BudgetCache cache;
 };
 
@@ -33,5 +38,6 @@ struct BudgetService {
 Result<std::optional<double>> take_budget(std::vector<std::string>& assignments);
 
 void to_proto(const tools::BudgetChoice& choice, v1::FieldBudget* out);
+void to_proto(const tools::EnergyChoice& choice, v1::FieldEnergy* out);
 
 }  // namespace ddgi::service

@@ -72,6 +72,10 @@ class SessionScene {
                           const std::string& session_id);
   // Parameters set by hand: the field no longer follows a budget.
   void end_budget() { budget_.reset(); }
+  // The energy calibration's choice made on load, if any (BudgetService::energy).
+  const std::optional<tools::EnergyChoice>& energy() const { return energy_; }
+  // One of its parameters set by hand: the field's energy settings are no longer its choice.
+  void end_energy() { energy_.reset(); }
   // The scene's and both fields' GPU bytes.
   uint64_t gpu_bytes() const;
 
@@ -91,6 +95,10 @@ class SessionScene {
  private:
   SessionScene() = default;
   Status upload_lights(const std::vector<Light>& lights);
+  static Status choose_energy(vk::Context& context, const Scene& scene,
+                              const SessionOptions& options, BudgetService& budget,
+                              const std::string& session_id, const std::string& label,
+                              SessionScene& loaded, GiStackOptions& gi_options);
 
   vk::Context* context_ = nullptr;
   std::string label_;
@@ -101,6 +109,7 @@ class SessionScene {
   LightSet lights_;
   std::optional<tools::BudgetChoice> budget_;
   IrradianceFieldParams budget_base_;  // what budget_ was chosen over
+  std::optional<tools::EnergyChoice> energy_;
 };
 
 }  // namespace ddgi::service

@@ -25,7 +25,8 @@ json to_json(const Calibration& c) {
                           {"field_ms", p.field_ms},
                           {"frame_ms", p.frame_ms},
                           {"flip", p.flip},
-                          {"mean_ratio", p.mean_ratio}});
+                          {"mean_ratio", p.mean_ratio},
+                          {"indirect_ratio", p.indirect_ratio}});
   }
   return {{"device", c.device},
           {"width", c.width},
@@ -49,6 +50,7 @@ Calibration from_json(const json& doc) {
     point.frame_ms = p.at("frame_ms").get<double>();
     point.flip = p.at("flip").get<double>();
     point.mean_ratio = p.at("mean_ratio").get<double>();
+    point.indirect_ratio = p.at("indirect_ratio").get<double>();
     c.candidates.push_back(std::move(point));
   }
   if (c.candidates.empty()) throw std::runtime_error("no candidates");

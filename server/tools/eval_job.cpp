@@ -36,11 +36,6 @@ double mean_luminance(const std::vector<float>& rgba) {
   return rgba.empty() ? 0.0 : sum / double(rgba.size() / 4);
 }
 
-double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference) {
-  const double ref = mean_luminance(reference);
-  return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
-}
-
 // A configuration's shadow field parameters are named with this in front ("shadow.texels=8").
 constexpr std::string_view kShadowPrefix = "shadow.";
 
@@ -89,6 +84,11 @@ Status check_frame_downscale(const EvalJob& job, const Config& config) {
 }
 
 }  // namespace
+
+double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference) {
+  const double ref = mean_luminance(reference);
+  return ref > 0.0 ? mean_luminance(test) / ref : 0.0;
+}
 
 std::vector<std::string> Config::all_assignments() const {
   std::vector<std::string> all = assignments;
@@ -201,6 +201,11 @@ Result<EvalJob> parse_job(const Flags& flags) {
   for (const double budget : job.budgets) DDGI_TRY(check_budget_ms(budget));
   if (!job.budgets.empty() && flags.has("configs")) {
     return invalid_argument("--budgets measures the budget's own candidates: drop --configs");
+  }
+  job.energy = flags.has("energy");
+  if (job.energy && (!job.budgets.empty() || !job.dynamic.empty() || !job.camera_path.empty())) {
+    return invalid_argument(
+        "--energy applies to the table's configurations: not with --budgets, --dynamic or --path");
   }
   for (const Config& c : job.configs) DDGI_TRY(check_frame_downscale(job, c));
   return job;

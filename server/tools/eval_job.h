@@ -59,6 +59,7 @@ struct EvalJob {
   double path_rate = 30.0;      // field updates (and frames) per second of the path
   double path_every = 10.0;     // seconds of the path between scored frames
   std::vector<double> budgets;  // --budgets: ms per frame; empty: none
+  bool energy = false;          // --energy: the energy calibration's choice per configuration
 };
 
 Result<EvalJob> parse_job(const Flags& flags);
@@ -78,6 +79,10 @@ Result<std::unique_ptr<Renderer>> make_renderer(vk::Context& context, GiStack& g
 
 // Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
 float auto_exposure(const std::vector<float>& radiance);
+
+// The mean Rec. 709 luminance of linear RGBA `test` over `reference`'s ("mean/ref": 1 when a
+// frame neither loses nor adds light); 0 for a black reference.
+double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference);
 
 // PSNR, SSIM and FLIP of two tone-mapped images (RGBA8); mean_ratio is left 0.
 Result<ImageScores> score_ldr(const std::vector<uint8_t>& reference,

@@ -24,6 +24,7 @@
 #include "scene/gltf_loader.h"
 #include "tools/budget_eval.h"
 #include "tools/dynamic_response.h"
+#include "tools/energy_eval.h"
 #include "tools/eval_job.h"
 #include "tools/image_upscale.h"
 #include "tools/pareto.h"
@@ -107,6 +108,11 @@ readbacks not included).
                         separated), its choice is printed beside the measurements: the
                         chosen configuration's measured ms over the budget and its FLIP
                         over the best measured configuration within the budget
+  --energy              every configuration that sets none of probe_bounces,
+                        self_shadow_bias and irradiance_gamma gets what the energy
+                        calibration chooses for the scene, as a ddgi-server session does
+                        (--energy-calibration); the row's name says what (not with --budgets,
+                        --dynamic or --path)
   --backend B           auto | query | pipeline                         [auto]
 )";
 
@@ -457,7 +463,7 @@ Status run(int argc, char** argv) {
                    {"width", "height", "spp", "warmup", "frames", "configs", "field", "out-dir",
                     "backend", "pareto", "pt-max-spp", "dynamic", "response-frames",
                     "response-static", "path", "path-rate", "path-every", "budgets"},
-                   {"help"}));
+                   {"help", "energy"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -490,6 +496,10 @@ Status run(int argc, char** argv) {
     std::vector<Config> configs = job.configs;
     if (!job.budgets.empty()) {
       DDGI_ASSIGN_OR_RETURN(configs, tools::budget_configs(*context, job, scene));
+    }
+    if (job.energy) {
+      DDGI_ASSIGN_OR_RETURN(
+          configs, tools::energy_configs(*context, job, scene, default_camera(scene), configs));
     }
     for (const Config& config : configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ConfigPoint point,

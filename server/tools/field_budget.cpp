@@ -101,6 +101,11 @@ Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiSta
                               frame.radiance, view.width, view.height));
   out.flip = scores.flip;
   out.mean_ratio = scores.mean_ratio;
+  if (options.score_indirect) {
+    settings.view = View::kIndirect;
+    DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, renderer.render(settings));
+    out.indirect_ratio = mean_ratio(indirect.radiance, reference.second.radiance);
+  }
   return out;
 }
 
@@ -234,7 +239,7 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
   score_size(options, scored.width, scored.height);
   scored.camera = camera;
   scored.full_spp = options.reference_spp;
-  scored.second_spp = 0;
+  scored.second_spp = options.score_indirect ? options.reference_spp : 0;
   scored.exposure = auto_exposure;
   DDGI_ASSIGN_OR_RETURN(const ReferencePair reference,
                         reference_pair(context, gi->scene(), scored));
@@ -245,9 +250,12 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
   for (size_t i = 0; i < candidates.size(); ++i) {
     DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point,
                           measure(*gi, *renderer, base, candidates[i], i, reference, options));
-    LOG_INFO << "budget calibration " << i + 1 << "/" << candidates.size() << " '"
+    LOG_INFO << options.purpose << " calibration " << i + 1 << "/" << candidates.size() << " '"
              << point.candidate.name << "': " << point.cost_ms() << " ms (field " << point.field_ms
-             << " + frame " << point.frame_ms << "), FLIP " << point.flip;
+             << " + frame " << point.frame_ms << "), FLIP " << point.flip << ", mean/ref "
+             << point.mean_ratio
+             << (options.score_indirect ? ", indirect " + std::to_string(point.indirect_ratio)
+                                        : "");
     calibration.candidates.push_back(std::move(point));
   }
   calibration.seconds =
@@ -292,8 +300,8 @@ std::string calibration_key(const vk::Context& context, const Scene& scene,
   key << std::hex << scene_hash(scene) << std::dec << "|" << context.caps().device_name << "|"
       << context.caps().driver_name << "|" << options.width << "x" << options.height << "|"
       << options.reference_spp << "|" << options.warmup_updates << "|" << options.timed_frames
-      << "|" << static_cast<int>(base.direct_mode) << "|" << static_cast<int>(base.backend) << "|"
-      << params_text(field_param_table(), base.field);
+      << "|" << options.score_indirect << "|" << static_cast<int>(base.direct_mode) << "|"
+      << static_cast<int>(base.backend) << "|" << params_text(field_param_table(), base.field);
   // The shadow field's parameters count only where there is one.
   if (uses_shadow_field(shadow_field_mode(base.direct_mode, &base.field))) {
     key << "|" << params_text(shadow_param_table(), base.shadow);

@@ -60,6 +60,13 @@ struct CalibrationOptions {
   uint32_t warmup_updates = kConvergedWarmupUpdates;
   // Timed frames per candidate (one field update each; the median counts), [1, 1000].
   uint32_t timed_frames = 7;
+  // Also score the field's part of the frame (View::kIndirect) against the path tracer's
+  // (PathTraceView::kFieldIndirect), for CalibratedCandidate::indirect_ratio: the energy
+  // calibration's (tools/field_energy.h) second axis. Off for the budget, which ranks by FLIP of
+  // the full image only and would pay a second reference for nothing.
+  bool score_indirect = false;
+  // What the progress log calls the calibration ("budget calibration 3/8 ...").
+  const char* purpose = "budget";
   // Tests only (lavapipe's times mean nothing): each candidate's cost in ms, by index; timing
   // is skipped. Empty: measure.
   std::vector<double> injected_ms;
@@ -70,8 +77,9 @@ struct CalibratedCandidate {
   BudgetCandidate candidate;
   double field_ms = 0.0;  // medians over the timed frames (GPU timestamps)
   double frame_ms = 0.0;
-  double flip = 0.0;        // of the full image against the reference
-  double mean_ratio = 0.0;  // mean luminance over the reference's
+  double flip = 0.0;            // of the full image against the reference
+  double mean_ratio = 0.0;      // mean luminance over the reference's
+  double indirect_ratio = 0.0;  // the same of the field's part (options.score_indirect), else 0
   double cost_ms() const { return field_ms + frame_ms; }
 };
 

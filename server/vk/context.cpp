@@ -83,6 +83,7 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   caps.device_name = props2.properties.deviceName;
   caps.driver_name = std::string(driver_props.driverName) + " " + driver_props.driverInfo;
   caps.vendor_id = props2.properties.vendorID;
+  caps.cpu = props2.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   caps.api_version = props2.properties.apiVersion;
   caps.buffer_device_address = features12.bufferDeviceAddress == VK_TRUE;
   caps.acceleration_structure = has_as && as_features.accelerationStructure == VK_TRUE;

@@ -39,6 +39,9 @@ struct DeviceCapabilities {
   std::string device_name;
   std::string driver_name;
   uint32_t vendor_id = 0;
+  // VK_PHYSICAL_DEVICE_TYPE_CPU: a software implementation (lavapipe), where work that takes a
+  // GPU a second takes a minute.
+  bool cpu = false;
   uint32_t api_version = 0;
   bool acceleration_structure = false;
   bool ray_query = false;
