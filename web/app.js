@@ -338,6 +338,15 @@ function showField(field) {
       `measured ${Number(budget.costMs).toFixed(2)} ms, FLIP ${Number(budget.flip).toFixed(3)} ` +
       `(${budget.candidates} configurations${budget.fromCache ? ', calibrated before' : ''})`
     : '';
+  // The energy calibration's choice (FieldParams.energy), made on load where the server runs it.
+  // Proto3 JSON leaves zeros out (a black view's ratios).
+  const energy = field?.energy;
+  const fixed = (value) => Number(value ?? 0).toFixed(3);
+  $('energy-info').textContent = energy
+    ? `Light kept: ${energy.configuration}, mean/ref ${fixed(energy.meanRatio)} / ` +
+      `${fixed(energy.indirectRatio)} (frame / field part; static default ` +
+      `${fixed(energy.defaultMeanRatio)} / ${fixed(energy.defaultIndirectRatio)})`
+    : '';
 }
 
 // Asks the server for its best field configuration within the budget (field parameter

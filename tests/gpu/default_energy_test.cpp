@@ -13,6 +13,7 @@
 #include "render/renderer.h"
 #include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/gpu/mean_luminance.h"
 #include "tests/gpu/procedural.h"
 
 namespace ddgi::test {
@@ -30,33 +31,11 @@ Scene panel_room() {
   return scene;
 }
 
-double mean_luminance(const std::vector<float>& rgba) {
-  double sum = 0.0;
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
-  }
-  return sum / double(rgba.size() / 4);
-}
-
 class DefaultEnergyTest : public GpuTest {
  protected:
-  // The path tracer's mean over the image in `view` (pixel centres, as frames trace).
+  // The path tracer's mean over the image in `view`.
   double reference_mean(const Scene& scene, PathTraceView view) {
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    if (!gpu.ok()) return -1.0;
-    auto tracer = PathTracer::create(context(), **gpu, context().default_backend());
-    EXPECT_TRUE(tracer.ok()) << tracer.error().message;
-    if (!tracer.ok()) return -1.0;
-    PathTraceSettings settings;
-    settings.width = settings.height = kSize;
-    settings.camera = scene.cameras[0];
-    settings.jitter = false;
-    settings.view = view;
-    EXPECT_TRUE((*tracer)->accumulate(settings, 2048).ok());
-    auto image = (*tracer)->read();
-    EXPECT_TRUE(image.ok()) << image.error().message;
-    return image.ok() ? mean_luminance(image->radiance) : -1.0;
+    return path_traced_mean(scene, scene.cameras[0], kSize, kSize, view, 2048);
   }
 };
 

@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/gpu/mean_luminance.h"
 #include "tests/gpu/shadow_test_support.h"
 #include "tools/field_energy.h"
 
@@ -27,24 +28,9 @@ class FieldEnergyTest : public GpuTest {
  protected:
   static constexpr uint32_t kWidth = 64, kHeight = 36;
 
-  // The path tracer's mean luminance of `view`, at the check's own size (pixel centres).
-  double reference_mean(const Scene& scene, PathTraceView view) {
-    auto gpu = GpuScene::create(context(), scene);
-    EXPECT_TRUE(gpu.ok()) << gpu.error().message;
-    if (!gpu.ok()) return -1.0;
-    auto tracer = PathTracer::create(context(), **gpu, context().default_backend());
-    EXPECT_TRUE(tracer.ok()) << tracer.error().message;
-    if (!tracer.ok()) return -1.0;
-    PathTraceSettings settings;
-    settings.width = kWidth;
-    settings.height = kHeight;
-    settings.camera = default_camera(scene);
-    settings.jitter = false;
-    settings.view = view;
-    EXPECT_TRUE((*tracer)->accumulate(settings, 512).ok());
-    auto image = (*tracer)->read();
-    EXPECT_TRUE(image.ok()) << image.error().message;
-    return image.ok() ? luminance_mean(image->radiance) : -1.0;
+  // The path tracer's mean luminance of `view`, at the check's own size.
+  static double reference_mean(const Scene& scene, PathTraceView view) {
+    return path_traced_mean(scene, default_camera(scene), kWidth, kHeight, view, 512);
   }
 
   // The full frame's and the indirect view's mean luminance of a field of `params`, 96 updates in.
@@ -65,17 +51,9 @@ class FieldEnergyTest : public GpuTest {
       settings.view = view;
       auto frame = render_updated(**renderer, settings, setup.field);
       EXPECT_TRUE(frame.ok()) << frame.error().message;
-      return frame.ok() ? luminance_mean(frame->radiance) : -1.0;
+      return frame.ok() ? mean_luminance(frame->radiance) : -1.0;
     };
     return {mean_of(View::kFull), mean_of(View::kIndirect)};
-  }
-
-  static double luminance_mean(const std::vector<float>& rgba) {
-    double sum = 0.0;
-    for (size_t i = 0; i < rgba.size(); i += 4) {
-      sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
-    }
-    return sum / double(rgba.size() / 4);
   }
 };
 

@@ -27,22 +27,7 @@ class BudgetTest : public ServiceTest {
     add_params(request.mutable_field_params(), {{"budget_ms", budget_ms}});
     return request;
   }
-
-  grpc::Status set_field(const std::string& session, const char* name, const char* value,
-                         v1::FieldParams* reply) {
-    v1::SetFieldParamsRequest request;
-    request.set_session_id(session);
-    add_params(request.mutable_params(), {{name, value}});
-    return stub_->SetFieldParams(context().get(), request, reply);
-  }
 };
-
-std::string param(const v1::FieldParams& field, const std::string& name) {
-  for (const v1::FieldParam& p : field.params()) {
-    if (p.name() == name) return p.value();
-  }
-  return "(absent)";
-}
 
 TEST_F(BudgetTest, SessionFollowsTheChoiceReportsItAndTheCalibrationIsCached) {
   const v1::SessionInfo info = create_session(budget_request("1e6"));
@@ -62,7 +47,7 @@ TEST_F(BudgetTest, SessionFollowsTheChoiceReportsItAndTheCalibrationIsCached) {
   // The field is what the budget chose: its rays, and its grid.
   ASSERT_GE(budget.params_size(), 1);
   EXPECT_EQ(budget.params(0).name(), "rays_per_probe");
-  EXPECT_EQ(param(info.field(), "rays_per_probe"), budget.params(0).value());
+  EXPECT_EQ(param_value(info.field(), "rays_per_probe"), budget.params(0).value());
   const bool coarse = budget.configuration().find("coarse") != std::string::npos;
   EXPECT_EQ(info.field().probes(), coarse ? 8u : 27u) << budget.configuration();
 
@@ -81,23 +66,23 @@ TEST_F(BudgetTest, RefusalsNameTheProblemAndChangeNothing) {
 
   // A new budget starts from the session's own parameters, not the last choice: the same
   // calibration (cached), another choice within it.
-  grpc::Status status = set_field(session, "budget_ms", "1e6", &reply);
+  grpc::Status status = set_field_param(session, "budget_ms", "1e6", &reply);
   ASSERT_TRUE(status.ok()) << status.error_message();
   ASSERT_TRUE(reply.has_budget());
   EXPECT_TRUE(reply.budget().from_cache());
   EXPECT_EQ(reply.budget().configuration(), info.field().budget().configuration());
 
-  status = set_field(session, "budget_ms", "1e-9", &reply);
+  status = set_field_param(session, "budget_ms", "1e-9", &reply);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_NE(status.error_message().find("budget_ms 1e-09 cannot be met: the cheapest "
                                         "configuration measured for this scene"),
             std::string::npos)
       << status.error_message();
-  status = set_field(session, "budget_ms", "fast", &reply);
+  status = set_field_param(session, "budget_ms", "fast", &reply);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("budget_ms 'fast' is not a number"), std::string::npos)
       << status.error_message();
-  status = set_field(session, "budget_ms", "-2", &reply);
+  status = set_field_param(session, "budget_ms", "-2", &reply);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("budget_ms must be in (0, 1e+06]"), std::string::npos)
       << status.error_message();
@@ -108,20 +93,20 @@ TEST_F(BudgetTest, RefusalsNameTheProblemAndChangeNothing) {
   ASSERT_TRUE(stub_->GetFieldParams(context().get(), get, &now).ok());
   ASSERT_TRUE(now.has_budget());
   EXPECT_EQ(now.budget().configuration(), info.field().budget().configuration());
-  EXPECT_EQ(param(now, "rays_per_probe"), param(info.field(), "rays_per_probe"));
+  EXPECT_EQ(param_value(now, "rays_per_probe"), param_value(info.field(), "rays_per_probe"));
 
   // Ended (budget_ms 0): the report goes, the field stays as it is (not restarted: its update
   // count goes on); set by hand likewise, but restarted as any parameter change is.
   ASSERT_GT(now.updates(), 0u);
-  ASSERT_TRUE(set_field(session, "budget_ms", "0", &reply).ok());
+  ASSERT_TRUE(set_field_param(session, "budget_ms", "0", &reply).ok());
   EXPECT_FALSE(reply.has_budget());
-  EXPECT_EQ(param(reply, "rays_per_probe"), param(info.field(), "rays_per_probe"));
+  EXPECT_EQ(param_value(reply, "rays_per_probe"), param_value(info.field(), "rays_per_probe"));
   EXPECT_GE(reply.updates(), now.updates());
-  ASSERT_TRUE(set_field(session, "budget_ms", "1e6", &reply).ok());
+  ASSERT_TRUE(set_field_param(session, "budget_ms", "1e6", &reply).ok());
   ASSERT_TRUE(reply.has_budget());
-  ASSERT_TRUE(set_field(session, "hysteresis", "0.9", &reply).ok());
+  ASSERT_TRUE(set_field_param(session, "hysteresis", "0.9", &reply).ok());
   EXPECT_FALSE(reply.has_budget());
-  EXPECT_EQ(param(reply, "rays_per_probe"), param(info.field(), "rays_per_probe"));
+  EXPECT_EQ(param_value(reply, "rays_per_probe"), param_value(info.field(), "rays_per_probe"));
 
   v1::CreateSessionRequest no_field = budget_request("4");
   no_field.set_gi(false);

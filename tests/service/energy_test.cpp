@@ -20,22 +20,7 @@ class EnergyTest : public ServiceTest {
     options.energy_options.warmup_updates = 8;
     options.energy_options.timed_frames = 1;
   }
-
-  grpc::Status set_field(const std::string& session, const char* name, const char* value,
-                         v1::FieldParams* reply) {
-    v1::SetFieldParamsRequest request;
-    request.set_session_id(session);
-    add_params(request.mutable_params(), {{name, value}});
-    return stub_->SetFieldParams(context().get(), request, reply);
-  }
 };
-
-std::string param(const v1::FieldParams& field, const std::string& name) {
-  for (const v1::FieldParam& p : field.params()) {
-    if (p.name() == name) return p.value();
-  }
-  return "(absent)";
-}
 
 TEST_F(EnergyTest, SessionsGetTheChoiceUnlessTheySetItsParameters) {
   const v1::SessionInfo info = create_session(small_session_request("cornell_box", 2));
@@ -56,7 +41,7 @@ TEST_F(EnergyTest, SessionsGetTheChoiceUnlessTheySetItsParameters) {
   EXPECT_GT(energy.calibration_seconds(), 0.0);
   // The field has the chosen settings; the static default sets nothing.
   for (const v1::FieldParam& p : energy.params()) {
-    EXPECT_EQ(param(info.field(), p.name()), p.value()) << energy.configuration();
+    EXPECT_EQ(param_value(info.field(), p.name()), p.value()) << energy.configuration();
   }
   EXPECT_EQ(energy.params_size() == 0, energy.configuration() == "static default");
 
@@ -72,15 +57,15 @@ TEST_F(EnergyTest, SessionsGetTheChoiceUnlessTheySetItsParameters) {
   const v1::SessionInfo kept = create_session(own);
   ASSERT_FALSE(kept.session_id().empty());
   EXPECT_FALSE(kept.field().has_energy());
-  EXPECT_EQ(param(kept.field(), "self_shadow_bias"), "0.25");
+  EXPECT_EQ(param_value(kept.field(), "self_shadow_bias"), "0.25");
 
   // Another parameter set by hand keeps the report; one of the calibration's ends it.
   v1::FieldParams reply;
-  ASSERT_TRUE(set_field(info.session_id(), "hysteresis", "0.9", &reply).ok());
+  ASSERT_TRUE(set_field_param(info.session_id(), "hysteresis", "0.9", &reply).ok());
   EXPECT_TRUE(reply.has_energy());
-  ASSERT_TRUE(set_field(info.session_id(), "irradiance_gamma", "2", &reply).ok());
+  ASSERT_TRUE(set_field_param(info.session_id(), "irradiance_gamma", "2", &reply).ok());
   EXPECT_FALSE(reply.has_energy());
-  EXPECT_EQ(param(reply, "irradiance_gamma"), "2");
+  EXPECT_EQ(param_value(reply, "irradiance_gamma"), "2");
 }
 
 }  // namespace

@@ -114,6 +114,21 @@ void ServiceTest::add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>*
   }
 }
 
+grpc::Status ServiceTest::set_field_param(const std::string& session, const char* name,
+                                          const char* value, v1::FieldParams* reply) {
+  v1::SetFieldParamsRequest request;
+  request.set_session_id(session);
+  add_params(request.mutable_params(), {{name, value}});
+  return stub_->SetFieldParams(context().get(), request, reply);
+}
+
+std::string ServiceTest::param_value(const v1::FieldParams& field, const std::string& name) {
+  for (const v1::FieldParam& p : field.params()) {
+    if (p.name() == name) return p.value();
+  }
+  return "(absent)";
+}
+
 v1::SessionInfo ServiceTest::create_session(const v1::CreateSessionRequest& request) {
   v1::SessionInfo info;
   auto ctx = context();

@@ -53,6 +53,11 @@ class ServiceTest : public ::testing::Test {
   // Appends name=value parameters to a request's list (field_params, shadow_field_params...).
   static void add_params(google::protobuf::RepeatedPtrField<v1::FieldParam>* list,
                          std::initializer_list<std::pair<const char*, const char*>> params);
+  // SetFieldParams of one irradiance-field parameter.
+  grpc::Status set_field_param(const std::string& session, const char* name, const char* value,
+                               v1::FieldParams* reply);
+  // A parameter's value as a FieldParams lists it; "(absent)" when it lists none of that name.
+  static std::string param_value(const v1::FieldParams& field, const std::string& name);
   // RenderFrame of a one-off view.
   grpc::Status render(const std::string& session_id, uint32_t width, uint32_t height,
                       v1::Frame* frame, const v1::Camera* camera = nullptr);
