@@ -19,6 +19,13 @@ expect() {  # expect FILE PATTERN: the JSON in FILE contains PATTERN
   grep -q -- "$2" "$1" || { cat "$1" >&2; fail "$1 lacks $2"; }
 }
 
+# A bad flag value stops the server before it touches the GPU, naming the flag.
+if "$server_bin" --energy-calibration maybe >"$work/bad_flag.txt" 2>&1; then
+  fail "ddgi-server started with --energy-calibration maybe"
+fi
+grep -q -- "--energy-calibration must be auto, on or off (got 'maybe')" "$work/bad_flag.txt" ||
+  { cat "$work/bad_flag.txt" >&2; fail "the bad --energy-calibration value is not named"; }
+
 "$server_bin" --listen 127.0.0.1:0 --port-file "$work/port" --metrics-port -1 \
   --scene-root "$scene_root" --max-fps 30 --validation --web-port 0 --web-address 127.0.0.1 \
   >"$work/server.log" 2>&1 &
@@ -26,6 +33,9 @@ server=$!
 for _ in $(seq 1 300); do [ -s "$work/port" ] && break; sleep 0.1; done
 [ -s "$work/port" ] || { cat "$work/server.log"; fail "ddgi-server did not start"; }
 address="127.0.0.1:$(cat "$work/port")"
+# On lavapipe the energy calibration is left off by default, and the log says so.
+grep -q 'energy calibration off on a CPU device' "$work/server.log" ||
+  { cat "$work/server.log" >&2; fail "no line on the energy calibration's default"; }
 c() { "$client_bin" --server "$address" "$@"; }
 
 c info >"$work/info.json"; expect "$work/info.json" '"cornell_box"'
