@@ -2,7 +2,8 @@
 // and SetFieldParams (and ddgi-server --budget-ms for sessions that set none), taken out of the
 // field assignments before the parameter table sees them; the calibration settings and cache
 // every session of the server shares; and the choice as FieldParams.budget reports it. The
-// choosing itself is tools/field_budget.h.
+// choosing itself is tools/field_budget.h. The energy calibration (tools/field_energy.h), which
+// shares the calibration machinery and cache, is configured and reported here too.
 #pragma once
 
 #include <optional>
@@ -26,8 +27,9 @@ inline constexpr const char* kBudgetParamHelp =
 struct BudgetService {
   double default_ms = 0.0;  // sessions that set no budget_ms (--budget-ms); 0: none
   tools::CalibrationOptions calibration;
-  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters:
-  // on with ddgi-server's --energy-calibration (its default). Its calibrations share the cache.
+  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters,
+  // as ServerOptions::energy_calibration and energy_options say. Its calibrations share the
+  // cache (keys of their own).
   bool energy = false;
   tools::CalibrationOptions energy_calibration;
   tools::BudgetCache cache;
