@@ -5,9 +5,13 @@
 // alone: tests/unit/tools/field_energy_choice_test.cpp.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 #include <utility>
 
 #include "gi/gi_stack.h"
@@ -15,6 +19,7 @@
 #include "gpu_scene/camera_fit.h"
 #include "render/path_tracer.h"
 #include "render/renderer.h"
+#include "tests/gpu/cli_run.h"
 #include "tests/gpu/field_setup.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/mean_luminance.h"
@@ -105,6 +110,42 @@ TEST_F(FieldEnergyTest, CornellBoxGetsASettingThatKeepsItsLight) {
               indirect_chosen / indirect_ref);
   EXPECT_LT(error(full_chosen, indirect_chosen), error(full_static, indirect_static));
   EXPECT_LT(error(full_chosen, indirect_chosen), 0.05);
+}
+
+// ddgi-eval --energy end to end: a configuration that sets none of the energy parameters gets
+// the calibration's choice (named in its row, reported on stderr), one that sets one keeps its
+// own; --energy with a mode it does not apply to is refused by name. Planted: the row keeping
+// its plain name fails it.
+TEST(EnergyEvalCli, GivesTheChoiceToConfigurationsThatLeaveItOpen) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ddgi-energy-eval-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const CliRun run = run_cli(DDGI_EVAL_EXE,
+                             "scenes/cornell_box.gltf --width 40 --height 30 --spp 16 --warmup 4 "
+                             "--frames 1 --field counts=4,4,4 --energy "
+                             "--configs 'own:self_shadow_bias=0.3;open:'",
+                             dir);
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("| cornell_box | own |"), std::string::npos) << run.out;
+  const size_t chosen_at = run.err.find("open, energy: chosen='");
+  ASSERT_NE(chosen_at, std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("own, energy:"), std::string::npos) << run.err;
+  const size_t name_at = chosen_at + std::string("open, energy: chosen='").size();
+  const std::string chosen = run.err.substr(name_at, run.err.find('\'', name_at) - name_at);
+  bool known = false;
+  for (const tools::BudgetCandidate& c : tools::energy_candidates()) known |= c.name == chosen;
+  EXPECT_TRUE(known) << chosen;
+  EXPECT_NE(run.out.find("| cornell_box | open (energy: " + chosen + ") |"), std::string::npos)
+      << run.out;
+
+  for (const char* mode : {"--budgets 2", "--dynamic light:0:0,0.1,0"}) {
+    const CliRun refused =
+        run_cli(DDGI_EVAL_EXE, std::string("scenes/cornell_box.gltf --energy ") + mode, dir);
+    EXPECT_EQ(refused.exit_code, 2) << mode;
+    EXPECT_NE(refused.err.find("--energy applies to the table's configurations"), std::string::npos)
+        << refused.err;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
