@@ -1,8 +1,8 @@
 // The energy calibration (tools/field_energy.h) on the Cornell box, whose field part the static
 // default brightens by 4-6% (docs/results/default-energy.md: 1.039 at 160x90, 1.051 at 384x216):
 // a calibration as a session runs it, checked by frames and path-traced references made here
-// without the calibration's code, at another size, sample count and warm-up. The choice rule
-// alone: tests/unit/tools/field_energy_choice_test.cpp.
+// without the calibration's code, at another size, sample count and warm-up; and ddgi-eval
+// --energy end to end. The choice rule alone: tests/unit/tools/field_energy_choice_test.cpp.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
