@@ -38,21 +38,21 @@ void log_budget(const tools::BudgetChoice& c, const std::string& session_id,
 Status SessionScene::choose_energy(vk::Context& context, const Scene& scene,
                                    const SessionOptions& options, BudgetService& budget,
                                    const std::string& session_id, const std::string& label,
-                                   SessionScene& loaded, GiStackOptions& gi_options) {
+                                   GiStackOptions& gi_options) {
   if (!budget.energy || !options.gi || tools::sets_energy_params(options.field_assignments)) {
     return ok_status();
   }
   Result<tools::EnergyChoice> choice = tools::apply_energy(
-      context, scene, loaded.default_camera_, gi_options, budget.energy_calibration, budget.cache);
+      context, scene, default_camera_, gi_options, budget.energy_calibration, budget.cache);
   if (!choice.ok()) {
     if (context.device_lost()) return choice.error();
     LOG_WARNING << "energy calibration failed session=" << session_id << " scene=" << label << ": "
                 << choice.error().message << "; the field keeps its static defaults";
     return ok_status();
   }
-  loaded.energy_ = std::move(*choice);
+  energy_ = std::move(*choice);
   LOG_INFO << "energy calibration session=" << session_id << " scene=" << label << " "
-           << tools::describe(*loaded.energy_);
+           << tools::describe(*energy_);
   return ok_status();
 }
 
@@ -70,8 +70,8 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
                         options.shadow_assignments, context.default_backend()));
   std::unique_ptr<SessionScene> loaded(new SessionScene());
   loaded->default_camera_ = ::ddgi::default_camera(scene);
-  DDGI_TRY(choose_energy(context, scene, options, budget, session_id, request.label, *loaded,
-                         gi_options));
+  DDGI_TRY(loaded->choose_energy(context, scene, options, budget, session_id, request.label,
+                                 gi_options));
   const double budget_ms = options.budget_ms.value_or(budget.default_ms);
   if (budget_ms > 0.0 && !options.gi && options.budget_ms) {
     return failed_precondition(

@@ -95,10 +95,9 @@ class SessionScene {
  private:
   SessionScene() = default;
   Status upload_lights(const std::vector<Light>& lights);
-  static Status choose_energy(vk::Context& context, const Scene& scene,
-                              const SessionOptions& options, BudgetService& budget,
-                              const std::string& session_id, const std::string& label,
-                              SessionScene& loaded, GiStackOptions& gi_options);
+  Status choose_energy(vk::Context& context, const Scene& scene, const SessionOptions& options,
+                       BudgetService& budget, const std::string& session_id,
+                       const std::string& label, GiStackOptions& gi_options);
 
   vk::Context* context_ = nullptr;
   std::string label_;
