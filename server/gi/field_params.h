@@ -190,6 +190,19 @@ struct IrradianceFieldParams {
   // it is noisier per pixel but unbiased.
   uint32_t emitter_samples = 0;
 
+  // --- Paths per pixel (docs/service.md, "Paths per pixel") ----------------------------------
+  // The frame's indirect light per pixel, in [0, 64]: 0 reads the field at the pixel (DDGI);
+  // N > 0 traces N cosine-weighted paths from the pixel instead, each of at most
+  // pixel_path_vertices vertices with probe_bounces' rule (next-event estimation at every
+  // vertex, Russian roulette after the fourth), reading the field where it ends. Light a probe
+  // grid cannot hold, the near field of cavities and gaps narrower than the probe spacing
+  // (cornell_nvpro's albedo-1 slot around its lamp, docs/results/default-energy.md), then
+  // reaches the pixel, at the noise of N paths per pixel and N x vertices rays. 0: the default.
+  uint32_t pixel_paths = 0;
+  // Vertices of each path per pixel, in [1, 64]. 8: an albedo-1 cavity sends most of its light
+  // back within eight bounces; open rooms end most paths by roulette long before.
+  uint32_t pixel_path_vertices = 8;
+
   // --- Direct light at probe-ray hits (docs/shadow-field.md, "Probe rays") -------------------
   // How punctual lights light the probe-ray hits: a direct mode of its own, or none (the
   // default) to follow the mode of the frame or update that runs the field. The field is a

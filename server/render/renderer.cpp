@@ -110,6 +110,20 @@ Status Renderer::create_kernels() {
   return ok_status();
 }
 
+Status Renderer::create_field_kernels() {
+  // A path traversal inlined per pixel compiles for a while on lavapipe: only when asked.
+  if (!field_ || field_->params().pixel_paths == 0 || pixel_paths_.valid()) return ok_status();
+  DDGI_ASSIGN_OR_RETURN(
+      pixel_paths_,
+      vk::Kernel::create(context_,
+                         {"pixel_paths",
+                          true,
+                          {scene_.layout(), frame_layout_.handle(), field_->sampling_layout()},
+                          sizeof(gpu::IndirectConstants)},
+                         backend_));
+  return ok_status();
+}
+
 Status Renderer::check_inputs(const FrameSettings& settings) const {
   DDGI_TRY(validate(settings));
   const bool field_view = settings.view == View::kProbes || settings.view == View::kAtlas;
@@ -166,6 +180,10 @@ FrameConstants frame_constants(const FrameSettings& settings, const IrradianceFi
   c.indirect.view = static_cast<uint32_t>(settings.view);
   c.indirect.width = settings.width;
   c.indirect.height = settings.height;
+  if (field) {
+    c.indirect.paths = field->params().pixel_paths;
+    c.indirect.path_vertices = field->params().pixel_path_vertices;
+  }
   gpu::FieldViewConstants& views = c.views;
   views.camera_position = basis.position;
   views.view = static_cast<uint32_t>(settings.view);
@@ -219,7 +237,8 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
   if (field_) {
     const std::vector<VkDescriptorSet> with_field = {scene_.descriptor_set(), target.frame_set(),
                                                      field_->sampling_set()};
-    passes.push_back(pass("indirect", indirect_, with_field, vk::Pass::push(c.indirect),
+    const vk::Kernel& indirect = c.indirect.paths > 0 ? pixel_paths_ : indirect_;
+    passes.push_back(pass("indirect", indirect, with_field, vk::Pass::push(c.indirect),
                           {&gbuffer, &radiance}, {&radiance}));
     if (settings.view == View::kProbes || settings.view == View::kAtlas) {
       passes.push_back(pass("field view", field_views_, with_field, vk::Pass::push(c.views),
@@ -276,6 +295,7 @@ Result<FrameResult> Renderer::render(const FrameSettings& settings,
 Result<PendingFrame> Renderer::submit(const FrameSettings& settings, FrameTarget& target,
                                       std::span<const vk::Pass> before) {
   DDGI_TRY(check_inputs(settings));
+  DDGI_TRY(create_field_kernels());
   if (target.width() != settings.width || target.height() != settings.height) {
     return invalid_argument("the frame target is " + std::to_string(target.width()) + "x" +
                             std::to_string(target.height()) + ", the frame " +

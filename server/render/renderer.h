@@ -117,7 +117,8 @@ class Renderer {
                              std::span<const vk::Pass> before = {});
   // The same into the renderer's own target, resized to the settings' size as needed.
   Result<FrameResult> render(const FrameSettings& settings, std::span<const vk::Pass> before = {});
-  // The passes of one frame into `target`, in order, each with its declared inputs and outputs.
+  // The passes of one frame into `target`, in order, each with its declared inputs and outputs
+  // (submit() first builds the kernels the field's parameters ask for).
   std::vector<vk::Pass> frame_passes(const FrameSettings& settings,
                                      const FrameTarget& target) const;
   // ddgi-bench's baseline for primary visibility: the frame's camera rays traced by a kernel
@@ -131,6 +132,8 @@ class Renderer {
   Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field, ShadowField* shadow_field)
       : context_(context), scene_(scene), field_(field), shadow_field_(shadow_field) {}
   Status create_kernels();
+  // Builds the kernels the field's current parameters need and create_kernels() leaves out.
+  Status create_field_kernels();
   // FAILED_PRECONDITION when the settings need a field this renderer was made without.
   Status check_inputs(const FrameSettings& settings) const;
 
@@ -145,6 +148,7 @@ class Renderer {
   vk::Kernel direct_;
   vk::Kernel direct_shadow_field_;  // the direct pass with the shadow field bound as set 2
   vk::Kernel indirect_;
+  vk::Kernel pixel_paths_;  // the indirect pass tracing paths per pixel; built when first asked
   vk::Kernel field_views_;
   vk::Kernel tonemap_;
   vk::Kernel yuv420_;

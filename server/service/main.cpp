@@ -58,7 +58,8 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --budget-cache DIR        keep budget calibrations in DIR too (created if missing), so a
                             restarted server does not calibrate a scene again  [memory only]
   --energy-calibration M    auto | on | off: a session that sets none of probe_bounces,
-                            self_shadow_bias, irradiance_gamma gets those of the settings,
+                            self_shadow_bias, irradiance_gamma, pixel_paths,
+                            pixel_path_vertices gets those of the settings,
                             measured on load (cached like a budget's), that keep its frame's
                             light within 3% of a path tracer's (docs/service.md, "Energy
                             calibration"); auto: on a GPU, off on a CPU device (lavapipe),

@@ -109,7 +109,8 @@ readbacks not included).
                         chosen configuration's measured ms over the budget and its FLIP
                         over the best measured configuration within the budget
   --energy              every configuration that sets none of probe_bounces,
-                        self_shadow_bias and irradiance_gamma gets what the energy
+                        self_shadow_bias, irradiance_gamma, pixel_paths and
+                        pixel_path_vertices gets what the energy
                         calibration chooses for the scene, as a ddgi-server session does
                         (--energy-calibration); the row's name says what (not with --budgets,
                         --dynamic or --path)

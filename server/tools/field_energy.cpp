@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "gi/param_table.h"
 
@@ -24,7 +25,14 @@ std::vector<BudgetCandidate> energy_candidates() {
           {"bias 0.5", {"self_shadow_bias=0.5"}},
           {"paths 1", {"probe_bounces=1"}},
           {"paths 1, bias 0.5", {"probe_bounces=1", "self_shadow_bias=0.5"}},
-          {"paths 1, gamma 1", {"probe_bounces=1", "irradiance_gamma=1"}}};
+          {"paths 1, gamma 1", {"probe_bounces=1", "irradiance_gamma=1"}},
+          {"pixel paths 4x32", {std::begin(kPixelPathsCandidate), std::end(kPixelPathsCandidate)}}};
+}
+
+bool traces_pixel_paths(const BudgetCandidate& candidate) {
+  return std::any_of(
+      candidate.assignments.begin(), candidate.assignments.end(),
+      [](const std::string& a) { return a.rfind("pixel_paths=", 0) == 0 && a != "pixel_paths=0"; });
 }
 
 double energy_error(const CalibratedCandidate& c) {
@@ -34,13 +42,26 @@ double energy_error(const CalibratedCandidate& c) {
 Result<size_t> choose_energy(const Calibration& calibration) {
   const std::vector<CalibratedCandidate>& candidates = calibration.candidates;
   if (candidates.empty()) return invalid_argument("the energy calibration has no candidates");
-  double least = energy_error(candidates.front());
+  // The field's candidates first; paths per pixel only where none of those meets the bar.
+  auto least_error = [&](bool with_pixel_paths) {
+    double least = energy_error(candidates.front());
+    for (const CalibratedCandidate& c : candidates) {
+      if (with_pixel_paths || !traces_pixel_paths(c.candidate)) {
+        least = std::min(least, energy_error(c));
+      }
+    }
+    return least;
+  };
+  const bool with_pixel_paths = least_error(false) > kEnergyAcceptance;
+  auto counts = [&](size_t i) {
+    return with_pixel_paths || !traces_pixel_paths(candidates[i].candidate);
+  };
   for (size_t i = 0; i < candidates.size(); ++i) {
-    if (energy_error(candidates[i]) <= kEnergyTarget) return i;
-    least = std::min(least, energy_error(candidates[i]));
+    if (counts(i) && energy_error(candidates[i]) <= kEnergyTarget) return i;
   }
+  const double least = least_error(with_pixel_paths);
   size_t i = 0;
-  while (energy_error(candidates[i]) > least + kEnergyTie) ++i;
+  while (!counts(i) || energy_error(candidates[i]) > least + kEnergyTie) ++i;
   return i;
 }
 

@@ -5,7 +5,7 @@
 // Compiled a second time as direct_shadow_field with DDGI_SHADOW_FIELD_SET=2 (the shadow field).
 #include "gi/shadow_direct.glsl"
 #include "common/emitter_direct.glsl"
-#include "common/gbuffer.glsl"
+#include "render/gbuffer_surface.glsl"
 
 layout(push_constant, scalar) uniform Push { DirectConstants pc; };
 layout(set = kFrameSet, binding = kFrameBindingGBuffer, scalar) readonly buffer GBuffer {
@@ -28,12 +28,7 @@ void main() {
   // is the same part.
   vec3 result = pc.view == kViewIndirect ? vec3(0.0) : texel.emission;
   if ((flags & kGBufferHit) != 0u) {
-    Surface s;
-    s.position = texel.position;
-    s.normal = unpack_normal(texel.normal_oct);
-    s.geometric_normal = unpack_normal(texel.geometric_normal_oct);
-    s.albedo = unpack_albedo(texel.albedo_flags);
-    s.front_face = (flags & kGBufferFrontFace) != 0u;
+    const Surface s = gbuffer_surface(texel);
     Rng rng = rng_seed(pixel.x, pixel.y, 0x9e3779b9u);
     const vec3 to_camera = safe_normalize(pc.camera_position - s.position, s.normal);
     const vec3 direct = direct_light(s, pc.mode, pc.light_samples, to_camera,

@@ -79,8 +79,8 @@ struct IndirectConstants {
   uint view;
   uint width;
   uint height;
-  uint pad0;
-  uint pad1;
+  uint paths;          // pixel_paths.glsl: paths per pixel (field parameter pixel_paths)
+  uint path_vertices;  // ... and their vertices (pixel_path_vertices)
 };
 
 struct FieldViewConstants {
@@ -154,8 +154,8 @@ static_assert(offsetof(IndirectConstants, camera_position) == 0);
 static_assert(offsetof(IndirectConstants, view) == 12);
 static_assert(offsetof(IndirectConstants, width) == 16);
 static_assert(offsetof(IndirectConstants, height) == 20);
-static_assert(offsetof(IndirectConstants, pad0) == 24);
-static_assert(offsetof(IndirectConstants, pad1) == 28);
+static_assert(offsetof(IndirectConstants, paths) == 24);
+static_assert(offsetof(IndirectConstants, path_vertices) == 28);
 
 static_assert(sizeof(FieldViewConstants) == 64);
 static_assert(offsetof(FieldViewConstants, camera_position) == 0);
