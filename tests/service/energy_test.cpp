@@ -27,7 +27,7 @@ TEST_F(EnergyTest, SessionsGetTheChoiceUnlessTheySetItsParameters) {
   ASSERT_FALSE(info.session_id().empty());
   ASSERT_TRUE(info.field().has_energy());
   const v1::FieldEnergy& energy = info.field().energy();
-  EXPECT_EQ(energy.candidates(), 5u);
+  EXPECT_EQ(energy.candidates(), 6u);
   EXPECT_FALSE(energy.from_cache());
   // Measured, not made up: the box is lit in both views; a 2x2x2 field 8 updates in is far from
   // settled (lavapipe, 48x48: static default 0.635 / 0.089, 'paths 1, gamma 1' 0.695 / 0.238).

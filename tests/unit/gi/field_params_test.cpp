@@ -415,6 +415,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
       {"hot_updates", "12"},
       {"maintenance_rate", "0.25"},
       {"emitter_samples", "2"},
+      {"pixel_paths", "3"},
+      {"pixel_path_vertices", "5"},
       {"probe_direct", "ao"},
       {"seed", "11"},
   };
@@ -455,6 +457,8 @@ TEST(FieldParamTable, SetsAndGetsEveryParameterByName) {
   expected.hot_updates = 12;
   expected.maintenance_rate = 0.25f;
   expected.emitter_samples = 2;
+  expected.pixel_paths = 3;
+  expected.pixel_path_vertices = 5;
   expected.probe_direct = DirectMode::kAmbientOcclusion;
   expected.seed = 11;
 
