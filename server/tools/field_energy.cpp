@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <limits>
 
 #include "gi/param_table.h"
 
@@ -42,24 +43,20 @@ double energy_error(const CalibratedCandidate& c) {
 Result<size_t> choose_energy(const Calibration& calibration) {
   const std::vector<CalibratedCandidate>& candidates = calibration.candidates;
   if (candidates.empty()) return invalid_argument("the energy calibration has no candidates");
-  // The field's candidates first; paths per pixel only where none of those meets the bar.
-  auto least_error = [&](bool with_pixel_paths) {
-    double least = energy_error(candidates.front());
-    for (const CalibratedCandidate& c : candidates) {
-      if (with_pixel_paths || !traces_pixel_paths(c.candidate)) {
-        least = std::min(least, energy_error(c));
-      }
-    }
-    return least;
-  };
-  const bool with_pixel_paths = least_error(false) > kEnergyAcceptance;
-  auto counts = [&](size_t i) {
-    return with_pixel_paths || !traces_pixel_paths(candidates[i].candidate);
-  };
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    if (counts(i) && energy_error(candidates[i]) <= kEnergyTarget) return i;
+  // Paths per pixel, noisier than any field, count only where no field candidate meets the bar.
+  double least_field = std::numeric_limits<double>::infinity();
+  for (const CalibratedCandidate& c : candidates) {
+    if (!traces_pixel_paths(c.candidate)) least_field = std::min(least_field, energy_error(c));
   }
-  const double least = least_error(with_pixel_paths);
+  auto counts = [&](size_t i) {
+    return least_field > kEnergyAcceptance || !traces_pixel_paths(candidates[i].candidate);
+  };
+  double least = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (!counts(i)) continue;
+    if (energy_error(candidates[i]) <= kEnergyTarget) return i;
+    least = std::min(least, energy_error(candidates[i]));
+  }
   size_t i = 0;
   while (!counts(i) || energy_error(candidates[i]) > least + kEnergyTie) ++i;
   return i;
