@@ -9,6 +9,8 @@
 // full frames and field parts against path-traced references at the session's default view
 // (the time budget's machinery, tools/field_budget.h, with score_indirect) and keeps the first
 // candidate, in order of cost, within kEnergyTarget; where none is, the one that errs least.
+// Light no probe grid holds (cornell_nvpro's albedo-1 slot, cornell_kajiya's lamp-ceiling gap)
+// only paths per pixel bring back: the last resort, at their noise.
 #pragma once
 
 #include <cstddef>
