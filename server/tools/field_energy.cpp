@@ -31,9 +31,9 @@ std::vector<BudgetCandidate> energy_candidates() {
 }
 
 bool traces_pixel_paths(const BudgetCandidate& candidate) {
-  return std::any_of(
-      candidate.assignments.begin(), candidate.assignments.end(),
-      [](const std::string& a) { return a.rfind("pixel_paths=", 0) == 0 && a != "pixel_paths=0"; });
+  // Read through the parameter table, as the calibration applies it: any spelling of a value.
+  IrradianceFieldParams params;
+  return field_param_table().apply(params, candidate.assignments).ok() && params.pixel_paths > 0;
 }
 
 double energy_error(const CalibratedCandidate& c) {

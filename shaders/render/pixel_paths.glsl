@@ -9,28 +9,17 @@
 // a still camera sees a still image.
 #include "gi/field_paths.glsl"
 #include "render/gbuffer_surface.glsl"
-
-layout(push_constant, scalar) uniform Push { IndirectConstants pc; };
-layout(set = kFrameSet, binding = kFrameBindingGBuffer, scalar) readonly buffer GBuffer {
-  GBufferTexel gbuffer[];
-};
-layout(set = kFrameSet, binding = kFrameBindingRadiance, scalar) buffer Radiance {
-  vec4 radiance[];
-};
+#include "render/indirect_pass.glsl"
 
 void main() {
   const uvec2 pixel = DDGI_INVOCATION_ID.xy;
-  if (pixel.x >= pc.width || pixel.y >= pc.height) return;
-  const uint index = pixel.y * pc.width + pixel.x;
-  const GBufferTexel texel = gbuffer[index];
-  if ((unpack_gbuffer_flags(texel.albedo_flags) & kGBufferHit) == 0u) return;
-  if (pc.view != kViewFull && pc.view != kViewIndirect && pc.view != kViewProbes) return;
+  GBufferTexel texel;
+  if (!indirect_texel(pixel, texel)) return;
   const Surface s = gbuffer_surface(texel);
   Rng rng = rng_seed(pixel.x, pixel.y, 0x27d4eb2fu);
   vec3 sum = vec3(0.0);
   for (uint path = 0u; path < pc.paths; ++path) {
     sum += traced_irradiance(s, pc.path_vertices, rng);
   }
-  const vec3 indirect = s.albedo * sum / float(pc.paths);
-  radiance[index].rgb += sanitize_radiance(indirect);
+  add_indirect(pixel, s.albedo * sum / float(pc.paths));
 }
