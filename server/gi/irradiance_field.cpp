@@ -282,13 +282,8 @@ Status IrradianceField::create_surfels() {
   return ok_status();
 }
 
-Status IrradianceField::set_update_path(FieldUpdatePath path, uint32_t overlap_parts) {
+Status IrradianceField::set_update_path(FieldUpdatePath path) {
   DDGI_TRY(check_path_fits(params_, path));
-  if (overlap_parts < 1 || overlap_parts > kMaxOverlapParts) {
-    return invalid_argument("overlap parts " + std::to_string(overlap_parts) + " out of range 1.." +
-                            std::to_string(kMaxOverlapParts));
-  }
-  overlap_parts_ = overlap_parts;
   if (path == FieldUpdatePath::kSplit && !shade_.valid()) DDGI_TRY(create_split_kernels());
   if (path == FieldUpdatePath::kSplit && !surfels_) DDGI_TRY(create_surfels());
   update_path_ = path;
@@ -721,22 +716,15 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
     work.per_probe = items;
     return work;
   };
-  if (update_path_ != FieldUpdatePath::kSplit) {
+  if (update_path_ == FieldUpdatePath::kFused) {
     const bool paths = params_.probe_bounces > 0;
     const vk::Kernel& trace =
         reads_shadow_field ? (paths ? trace_with_shadow_field_paths_ : trace_with_shadow_field_)
                            : (paths ? trace_paths_ : trace_);
-    if (update_path_ == FieldUpdatePath::kOverlapped && !paths) {
-      passes.push_back(
-          with_access(overlapped_lighting_pass(trace, rays, shadow_set),
-                      {&probes_, &probe_list_, &irradiance_, &distance_, &sh_, &rays_, &hits_},
-                      {&rays_, &hits_}));
-    } else {
-      passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
-                                   {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
-                                   {&rays_, &hits_}));
-    }
-    if (!paths && update_path_ == FieldUpdatePath::kFused) {
+    passes.push_back(with_access(linear_pass("field trace", trace, rays, shadow_set),
+                                 {&probes_, &probe_list_, &irradiance_, &distance_, &sh_},
+                                 {&rays_, &hits_}));
+    if (!paths) {
       passes.push_back(with_access(
           linear_pass("field hit light", hit_light_, rays),
           {&rays_, &hits_, &probes_, &probe_list_, &irradiance_, &distance_, &sh_}, {&rays_}));
@@ -770,37 +758,6 @@ void IrradianceField::add_lighting_passes(std::vector<vk::Pass>& passes, const L
   passes.push_back(
       with_access(linear_pass("borders", borders_, per_probe(4 * (std::max(ti, td) + 1))), {},
                   {&irradiance_, &distance_}));
-}
-
-vk::Pass IrradianceField::overlapped_lighting_pass(const vk::Kernel& trace, const LinearWork& rays,
-                                                   VkDescriptorSet shadow_set) const {
-  // Parts of whole hit-light groups (field_hit_light.comp lights each group of the grid's
-  // layers in blocks) where the window holds enough of them, so that no part breaks a block.
-  const glm::uvec3 counts = glm::uvec3(volumes_.front().grid.counts);
-  const uint32_t group = counts.x * counts.y * gpu::kHitLightBlockZ;
-  uint32_t part = (rays.probes + overlap_parts_ - 1) / overlap_parts_;
-  if (part >= group) part = (part + group - 1) / group * group;
-  std::vector<std::pair<vk::Pass, vk::Pass>> parts;
-  for (uint32_t first = 0; first < rays.probes; first += part) {
-    LinearWork work = rays;
-    work.list_start = (rays.list_start + first) % std::max(rays.list_size, 1u);
-    work.probes = std::min(part, rays.probes - first);
-    parts.emplace_back(linear_pass("field trace", trace, work, shadow_set),
-                       linear_pass("field hit light", hit_light_, work));
-  }
-  vk::Pass pass;
-  pass.name = "field trace + hit light";
-  pass.group = vk::PassGroup::kIrradianceField;
-  // Part k's hit light waits for part k's trace (and whatever came before); part k + 1's trace,
-  // a ray-tracing stage, waits for nothing of part k's hit light, whose rays it does not touch.
-  pass.commands = [parts = std::move(parts)](VkCommandBuffer cmd) {
-    for (size_t k = 0; k <= parts.size(); ++k) {
-      if (k < parts.size()) vk::record_dispatch(cmd, parts[k].first);
-      if (k > 0) vk::record_dispatch(cmd, parts[k - 1].second);
-      if (k < parts.size()) vk::barrier_before_compute(cmd);
-    }
-  };
-  return pass;
 }
 
 Result<std::vector<vk::Pass>> IrradianceField::raw_trace_passes() {

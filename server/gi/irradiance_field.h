@@ -42,16 +42,9 @@ std::vector<float> sh_coefficient_values(const std::vector<gpu::ShProbe>& probes
 
 // How an update is split into passes; both give the same atlases (tests/gpu/field_update_test).
 enum class FieldUpdatePath {
-  kFused,  // field_trace (trace + shade), field_hit_light, field_blend (per probe, borders in)
-  // The fused kernels with the window traced in parts: each part's hit light is recorded beside
-  // the next part's trace, with no barrier between them, so that the GPU may run the compute
-  // pass while the ray-tracing kernel waits on its traversal (docs/results/field-at-ray-cost.md).
-  kOverlapped,
+  kFused,  // field_trace (trace + shade), field_blend (per probe, borders included)
   kSplit,  // field_trace_surfels, field_shade, field_blend_irradiance/_distance, field_borders
 };
-// The parts of the overlapped path's window (FieldUpdatePath::kOverlapped): default, range.
-inline constexpr uint32_t kDefaultOverlapParts = 4;
-inline constexpr uint32_t kMaxOverlapParts = 64;
 
 class IrradianceField;
 // Probe streams describe one grid: FAILED_PRECONDITION naming `what` for a field of several
@@ -120,9 +113,8 @@ class IrradianceField {
     return scene_.move_count() != seen_moves_ || scheduler_.active_changed() ||
            !probe_list_is_active_ || !unread_.empty();
   }
-  // Chooses the passes of later updates (the split path allocates its surfel buffer here);
-  // `overlap_parts` (1..kMaxOverlapParts): how many parts the overlapped path cuts a window into.
-  Status set_update_path(FieldUpdatePath path, uint32_t overlap_parts = kDefaultOverlapParts);
+  // Chooses the passes of later updates (the split path allocates its surfel buffer here).
+  Status set_update_path(FieldUpdatePath path);
   FieldUpdatePath update_path() const { return update_path_; }
   // The benchmark's baseline: the last update's blended rays traced again by a kernel that only
   // records hit distances (shaders/gi/field_raw_trace.glsl). It overwrites the ray buffer,
@@ -248,9 +240,6 @@ class IrradianceField {
   // One workgroup per probe of `work` (field_blend).
   vk::Pass probe_workgroup_pass(const char* name, const vk::Kernel& kernel,
                                 const LinearWork& work) const;
-  // The overlapped path's trace and hit light over `rays`, as one timed pass.
-  vk::Pass overlapped_lighting_pass(const vk::Kernel& trace, const LinearWork& rays,
-                                    VkDescriptorSet shadow_set) const;
   // The lighting passes of one update over `rays` (fused or split path).
   void add_lighting_passes(std::vector<vk::Pass>& passes, const LinearWork& rays,
                            DirectMode direct_mode) const;
@@ -303,7 +292,6 @@ class IrradianceField {
   vk::Kernel blend_distance_;
   vk::Kernel borders_;
   FieldUpdatePath update_path_ = FieldUpdatePath::kFused;
-  uint32_t overlap_parts_ = kDefaultOverlapParts;
   vk::TraceBackend backend_ = vk::TraceBackend::kRayQuery;
 
   vk::Buffer constants_;

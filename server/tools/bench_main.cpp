@@ -40,10 +40,7 @@ every combination of --grids and --rays. Prints a markdown table (median millise
   --rays LIST           rays per probe, comma-separated                 [64,128,256]
   --paths LIST          field update paths, comma-separated: fused (the service's: trace,
                         hit light in the shade column, per-probe blend) and/or
-                        split (trace, shade, per-texel blends, borders) and/or
-                        overlapped or overlappedN (fused, the window in N parts [4], each
-                        part's hit light beside the next part's trace; in the trace column)
-                                                                        [fused]
+                        split (trace, shade, per-texel blends, borders)  [fused]
   --backend B           auto | query | pipeline                        [auto]
   --field NAME=VALUE    any other field parameter (repeatable)
   --scroll-every N      also scroll the field one cell along x (alternately + and -) before
@@ -77,13 +74,6 @@ Result<IrradianceFieldParams> grid_for(const Scene& scene, const std::string& sp
 }
 
 // What the flags ask for.
-// An update path the benchmark times (--paths).
-struct BenchPath {
-  FieldUpdatePath path = FieldUpdatePath::kFused;
-  uint32_t parts = kDefaultOverlapParts;  // of the overlapped path
-  std::string name;                       // in the table's path column
-};
-
 struct BenchJob {
   FrameSettings settings;
   int64_t frames = 20;
@@ -91,7 +81,7 @@ struct BenchJob {
   uint32_t probes = 512;
   std::vector<std::string> grids;
   std::vector<uint32_t> ray_counts;
-  std::vector<BenchPath> paths;
+  std::vector<FieldUpdatePath> paths;
   std::vector<std::string> field_assignments;
   int64_t scroll_every = 0;
 };
@@ -113,24 +103,8 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-// An update path of --paths: the path, its parts (overlapped path) and its name in the table.
-Result<BenchPath> parse_path(const std::string& name) {
-  if (name == "fused") return BenchPath{FieldUpdatePath::kFused, kDefaultOverlapParts, name};
-  if (name == "split") return BenchPath{FieldUpdatePath::kSplit, kDefaultOverlapParts, name};
-  const std::string overlapped = "overlapped";
-  if (name.rfind(overlapped, 0) != 0) {
-    return invalid_argument("--paths: '" + name + "' is not fused, split or overlapped[N]");
-  }
-  int64_t parts = kDefaultOverlapParts;
-  if (name.size() > overlapped.size()) {
-    DDGI_ASSIGN_OR_RETURN(parts, parse_int(name.substr(overlapped.size()), "--paths overlapped"));
-  }
-  if (parts < 1 || parts > kMaxOverlapParts) {
-    return invalid_argument("--paths: '" + name + "': parts out of range 1.." +
-                            std::to_string(kMaxOverlapParts));
-  }
-  return BenchPath{FieldUpdatePath::kOverlapped, static_cast<uint32_t>(parts),
-                   overlapped + std::to_string(parts)};
+const char* path_name(FieldUpdatePath path) {
+  return path == FieldUpdatePath::kFused ? "fused" : "split";
 }
 
 Result<BenchJob> parse_job(const Flags& flags) {
@@ -152,8 +126,10 @@ Result<BenchJob> parse_job(const Flags& flags) {
   }
   DDGI_ASSIGN_OR_RETURN(const std::string paths_text, flags.get_string("paths", "fused"));
   for (const std::string& name : split(paths_text, ',')) {
-    DDGI_ASSIGN_OR_RETURN(BenchPath path, parse_path(name));
-    job.paths.push_back(std::move(path));
+    if (name != "fused" && name != "split") {
+      return invalid_argument("--paths: '" + name + "' is not fused or split");
+    }
+    job.paths.push_back(name == "fused" ? FieldUpdatePath::kFused : FieldUpdatePath::kSplit);
   }
   if (job.paths.empty()) return invalid_argument("--paths: no update path given");
   job.field_assignments = flags.get_all("field");
@@ -163,7 +139,7 @@ Result<BenchJob> parse_job(const Flags& flags) {
 
 // The row of one configuration (columns: see run()).
 void print_row(const tools::PassTable& table, const GiStack& gi, const std::string& scene_path,
-               const BenchPath& path) {
+               FieldUpdatePath path) {
   const double field_ms = table.group_median(vk::PassGroup::kIrradianceField);
   const double raw_ms = table.pass_median("field raw trace");
   const double primary_ms = table.pass_median("primary");
@@ -175,15 +151,10 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
   const double blend_ms = table.pass_median("field blend") + table.pass_median("blend irradiance") +
                           table.pass_median("blend distance") + table.pass_median("borders");
   // The split path's shade pass; the fused path's hit-light pass (the previous field's light at
-  // each hit; none when paths are traced from the hits, which the trace lights itself); the
-  // overlapped path's is in its trace column.
+  // each hit; none when paths are traced from the hits, which the trace lights itself).
   char shade[32] = "—";
-  const double trace_ms =
-      table.pass_median("field trace") + table.pass_median("field trace + hit light");
-  if (path.path == FieldUpdatePath::kSplit) {
+  if (path == FieldUpdatePath::kSplit) {
     std::snprintf(shade, sizeof(shade), "%.3f", table.pass_median("field shade"));
-  } else if (path.path == FieldUpdatePath::kOverlapped && p.probe_bounces == 0) {
-    std::snprintf(shade, sizeof(shade), "in trace");
   } else if (p.probe_bounces == 0) {
     std::snprintf(shade, sizeof(shade), "%.3f", table.pass_median("field hit light"));
   }
@@ -193,8 +164,8 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
       name.c_str(), gi.scene().triangle_count(), p.counts.x, p.counts.y, p.counts.z,
       static_cast<unsigned long long>(counts.active()),
       static_cast<unsigned long long>(counts.sleeping), static_cast<unsigned long long>(counts.off),
-      p.rays_per_probe, path.name.c_str(), double(field.gpu_bytes()) / (1 << 20), trace_ms, shade,
-      blend_ms, field_ms, raw_ms, field_ms / raw_ms,
+      p.rays_per_probe, path_name(path), double(field.gpu_bytes()) / (1 << 20),
+      table.pass_median("field trace"), shade, blend_ms, field_ms, raw_ms, field_ms / raw_ms,
       double(field.rays_per_update()) / (field_ms * 1e3), primary_ms, primary_raw_ms,
       primary_ms / primary_raw_ms, table.pass_median("direct"), table.pass_median("indirect"),
       table.pass_median("tonemap"), table.others_median(vk::PassGroup::kIrradianceField));
@@ -204,7 +175,7 @@ void print_row(const tools::PassTable& table, const GiStack& gi, const std::stri
 // One table row: a GI stack for the configuration, warmed up, then `frames` timed frames, each
 // with both raw-ray baselines recorded after the update in the same submission.
 Status bench_row(vk::Context& context, const BenchJob& job, const std::string& scene_path,
-                 const Scene& scene, const std::string& grid, uint32_t rays, const BenchPath& path,
+                 const Scene& scene, const std::string& grid, uint32_t rays, FieldUpdatePath path,
                  std::vector<ScrollRow>& scroll_rows) {
   DDGI_ASSIGN_OR_RETURN(
       GiStackOptions options,
@@ -214,7 +185,7 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
   DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
   DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
   IrradianceField& field = *gi->field();
-  DDGI_TRY(field.set_update_path(path.path, path.parts));
+  DDGI_TRY(field.set_update_path(path));
   DDGI_ASSIGN_OR_RETURN(auto renderer, Renderer::create(context, gi->scene(), gi->field(),
                                                         context.default_backend()));
   DDGI_ASSIGN_OR_RETURN(auto target,
@@ -304,7 +275,7 @@ Status run(int argc, char** argv) {
     job.settings.camera = default_camera(scene);
     for (const std::string& grid : job.grids) {
       for (uint32_t rays : job.ray_counts) {
-        for (const BenchPath& path : job.paths) {
+        for (FieldUpdatePath path : job.paths) {
           DDGI_TRY(bench_row(*context, job, scene_path, scene, grid, rays, path, scroll_rows));
         }
       }

@@ -3,19 +3,14 @@
 
 namespace ddgi::vk {
 
-void record_dispatch(VkCommandBuffer cmd, const Pass& pass) {
-  if (!pass.kernel) return;
-  pass.kernel->dispatch(cmd, pass.sets,
-                        pass.push_constants.empty() ? nullptr : pass.push_constants.data(),
-                        pass.size);
-}
-
 void record_passes(VkCommandBuffer cmd, GpuTimer* timer, std::span<const Pass> passes) {
   for (const Pass& pass : passes) {
     const bool timed = timer && pass.timed;
     if (timed) timer->begin_pass(cmd, pass.name, pass.group);
     if (pass.kernel) {
-      record_dispatch(cmd, pass);
+      pass.kernel->dispatch(cmd, pass.sets,
+                            pass.push_constants.empty() ? nullptr : pass.push_constants.data(),
+                            pass.size);
     } else if (pass.commands) {
       pass.commands(cmd);
     }

@@ -60,9 +60,6 @@ inline Pass with_access(Pass pass, std::vector<ResourceRef> reads,
   return pass;
 }
 
-// Records the dispatch of a kernel pass (nothing for a pass of transfer commands).
-void record_dispatch(VkCommandBuffer cmd, const Pass& pass);
-
 // Records `passes` in order: each timed pass between timestamps of its name and group (when
 // `timer` is not null), then a full barrier.
 void record_passes(VkCommandBuffer cmd, GpuTimer* timer, std::span<const Pass> passes);

@@ -134,9 +134,6 @@ uint32_t float_channels(VkFormat format);
 
 // A full pipeline barrier between compute / ray-tracing / transfer writes and reads.
 void barrier_all(VkCommandBuffer cmd);
-// A barrier after which compute shaders see every earlier write, while later ray-tracing
-// kernels need not wait for earlier work: for passes that may run beside the next trace.
-void barrier_before_compute(VkCommandBuffer cmd);
 // Moves every mip/layer of `image` from `old_layout` to `new_layout`.
 void transition_image(VkCommandBuffer cmd, VkImage image, VkImageLayout old_layout,
                       VkImageLayout new_layout);

@@ -25,8 +25,9 @@ layout(set = kFieldUpdateSet, binding = kFieldUpdateBindingHits, scalar) readonl
 // "hit-light order"). Entries past the last whole group, and grids whose rows do not divide into
 // blocks, keep the list's order. A permutation of [0, entries) for any list, so only the speed
 // depends on what the list holds.
+const uvec3 kHitLightBlock = uvec3(4u, 2u, 4u);
 uint hit_light_entry(uint entry, uint entries) {
-  const uvec3 b = uvec3(kHitLightBlockX, kHitLightBlockY, kHitLightBlockZ);
+  const uvec3 b = kHitLightBlock;
   const uvec2 n = uvec2(field.counts.xy);
   const uint group = n.x * n.y * b.z;
   if (n.x % b.x != 0u || n.y % b.y != 0u || entry >= entries / group * group) return entry;

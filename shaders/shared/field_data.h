@@ -197,13 +197,6 @@ DDGI_CONST uint kProbeModeClassify = 1u;  // write each probe's state from its f
 DDGI_CONST uint kProbeModeStart = 2u;     // a probe that entered a scrolled volume: on its grid
                                           // point, no history, Vigilant until classified
 
-// The hit-light pass lights each group of kHitLightBlockZ whole layers (xy planes) of a grid in
-// blocks of these counts (shaders/gi/field_hit_light.comp); the overlapped update path cuts its
-// window at whole groups (server/gi/irradiance_field.cpp).
-DDGI_CONST uint kHitLightBlockX = 4u;
-DDGI_CONST uint kHitLightBlockY = 2u;
-DDGI_CONST uint kHitLightBlockZ = 4u;
-
 // Push constants of the linear (one invocation per item) field kernels. The probes a dispatch
 // works on are a window of the probe list: list[(list_start + i) % list_size].
 struct FieldDispatch {

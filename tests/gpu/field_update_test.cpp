@@ -80,12 +80,12 @@ struct Atlases {
 
 // A stack over `scene` whose field takes `path`, after `updates` updates of both fields.
 Atlases updated_atlases(const Scene& scene, const GiStackOptions& options, FieldUpdatePath path,
-                        uint32_t updates, uint32_t overlap_parts = kDefaultOverlapParts) {
+                        uint32_t updates) {
   Atlases a;
   auto gi = GiStack::create(gpu_context(), scene, options);
   EXPECT_TRUE(gi.ok()) << gi.error().message;
   if (!gi.ok()) return a;
-  const Status set = (*gi)->field()->set_update_path(path, overlap_parts);
+  const Status set = (*gi)->field()->set_update_path(path);
   EXPECT_TRUE(set.ok()) << set.error().message;
   const Status run = (*gi)->update(updates);
   EXPECT_TRUE(run.ok()) << run.error().message;
@@ -202,46 +202,6 @@ std::vector<PathCase> path_cases() {
 
 INSTANTIATE_TEST_SUITE_P(Cases, FieldUpdatePathTest, ::testing::ValuesIn(path_cases()),
                          [](const auto& test) { return std::string(test.param.name); });
-
-// The overlapped path runs the fused path's kernels over parts of the window, so its atlases are
-// the fused path's bit for bit: on both backends, with parts that cut the hit light's block
-// groups (64 probes, one group, in 3 parts), parts of whole groups (4x4x8: two groups, 2 parts)
-// and a budget window that wraps around the probe list.
-TEST_F(FieldUpdatePathTest, OverlappedPartsGiveTheFusedAtlases) {
-  struct Case {
-    const char* name;
-    vk::TraceBackend backend;
-    uint32_t parts;
-    glm::ivec3 counts;
-    uint64_t max_rays_per_update;
-    uint32_t updates;
-  };
-  const Case cases[] = {
-      {"query_3_parts", vk::TraceBackend::kRayQuery, 3, {4, 4, 4}, 0, 3},
-      {"pipeline_3_parts", vk::TraceBackend::kPipeline, 3, {4, 4, 4}, 0, 3},
-      {"pipeline_whole_groups", vk::TraceBackend::kPipeline, 2, {4, 4, 8}, 0, 3},
-      {"pipeline_budget_window", vk::TraceBackend::kPipeline, 4, {4, 4, 4}, 10 * 64, 9},
-  };
-  const Scene scene = materials_room();
-  for (const Case& c : cases) {
-    GiStackOptions options;
-    options.backend = c.backend;
-    options.field = room_field(64);
-    options.field.counts = c.counts;
-    options.field.max_rays_per_update = c.max_rays_per_update;
-    const Atlases fused = updated_atlases(scene, options, FieldUpdatePath::kFused, c.updates);
-    const Atlases overlapped =
-        updated_atlases(scene, options, FieldUpdatePath::kOverlapped, c.updates, c.parts);
-    ASSERT_TRUE(fused.ok && overlapped.ok) << c.name;
-    EXPECT_TRUE(is_nontrivial(fused.irradiance.texels, 0.01, 0.1, 4, 3)) << c.name;
-    const double irradiance = max_relative_difference(fused.irradiance, overlapped.irradiance);
-    const double distance = max_relative_difference(fused.distance, overlapped.distance);
-    std::printf("%s: overlapped against fused: irradiance %.2e, distance %.2e\n", c.name,
-                irradiance, distance);
-    EXPECT_EQ(irradiance, 0.0) << c.name;
-    EXPECT_EQ(distance, 0.0) << c.name;
-  }
-}
 
 // A real scene with glass and alpha masks (LivingRoom, through its sidecar) on a small grid.
 TEST_F(FieldUpdatePathTest, FusedAndSplitAgreeInTheLivingRoom) {

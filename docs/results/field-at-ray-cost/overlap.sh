@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Times the overlapped update path (the fused kernels over parts of the window, each part's hit
-# light recorded beside the next part's trace) against the fused path in one process: the
+# light recorded beside the next part's trace) against the fused path in one process. The path
+# was measured slower and removed: this runs against the bundle of b11926f only. The
 # thesis setup of field-at-ray-cost.md in ROUNDS rounds after a clock warm-up, then the service
 # defaults once. Usage (on the GPU host, through deploy/gpu-run.sh): overlap.sh OUT [ROUNDS]
 # [PATHS]
