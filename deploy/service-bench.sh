@@ -12,8 +12,10 @@
 # Environment for `run`: SCENES (default "cornell_box modern_hall living_room"), SIZES (default
 # "1280x720 1920x1080"), TRANSPORTS (default "grpc web": each stream once through gRPC and once
 # through the web front's WebSocket, as a browser gets it), SECONDS_PER_RUN (10),
-# ENCODE_THREADS (8), WARMUP (32), MULTI_VIEWS (4)
-# and MULTI_SIZE (1280x720): that many clients streaming views of one session at that size.
+# ENCODE_THREADS (8), WARMUP (32), LOAD_FIELDS (default "default": the sessions loaded per scene,
+# each "default" or comma-separated field assignments given to `load --field`, e.g.
+# "default emitter_samples=1 budget_ms=3"), MULTI_VIEWS (4; 0 skips) and MULTI_SIZE (1280x720):
+# that many clients streaming views of one session at that size.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # CARRY: a bundle with bin/ (ddgi-server, ddgi-client-lean, spirv/), lib/ and scenes/; `run`
@@ -62,27 +64,48 @@ run() {
   local client=("$bin/ddgi-client-lean" --server "127.0.0.1:$(cat "$out/port")" --deadline 600)
   "${client[@]}" info >"$out/info.json"
   for scene in ${SCENES:-cornell_box modern_hall living_room}; do
-    "${client[@]}" load "$scene" --warmup "${WARMUP:-32}" >"$out/$scene.session.json"
-    local session
-    session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/$scene.session.json" | head -n 1)
-    for size in ${SIZES:-1280x720 1920x1080}; do
-      for transport in ${TRANSPORTS:-grpc web}; do
-        local run="$scene.$size" via=()
-        if [ "$transport" = web ]; then run="$run.web" via=(--web 8090); fi
-        scrape >"$out/$run.metrics.before"
-        "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
-          --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
-          --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
-          --out "$out/$run.jpg" "${via[@]}" >"$out/$run.json"
-        scrape >"$out/$run.metrics.after"
-        echo "$scene $size $transport: $(tr -d '\n ' <"$out/$run.json")"
-        grep -E '^ddgi_(frame|gi_update|encode)_seconds_(sum|count)|^ddgi_(web_)?frames_(rendered|sent|dropped)_total' \
-          "$out/$run.metrics.after"
-      done
+    for fields in ${LOAD_FIELDS:-default}; do
+      stream_session "$out" "$scene" "$fields"
     done
-    "${client[@]}" close --session "$session" >/dev/null
   done
-  # Several clients on one session: one field update per frame serves all their views.
+  [ "${MULTI_VIEWS:-4}" = 0 ] || multi_view "$out"
+  kill -TERM "$server"
+  wait "$server"
+}
+
+# One session of SCENE loaded with FIELDS ("default" or a=1,b=2), streamed at every size through
+# every transport. Runs are named SCENE[.FIELDS].SIZE[.web].
+stream_session() {
+  local out=$1 scene=$2 fields=$3 name=$2 load=()
+  if [ "$fields" != default ]; then
+    name="$scene.$fields"
+    local assignment
+    for assignment in ${fields//,/ }; do load+=(--field "$assignment"); done
+  fi
+  "${client[@]}" load "$scene" --warmup "${WARMUP:-32}" "${load[@]}" >"$out/$name.session.json"
+  local session
+  session=$(sed -n 's/^ *"session_id": "\([^"]*\)".*/\1/p' "$out/$name.session.json" | head -n 1)
+  for size in ${SIZES:-1280x720 1920x1080}; do
+    for transport in ${TRANSPORTS:-grpc web}; do
+      local run="$name.$size" via=()
+      if [ "$transport" = web ]; then run="$run.web" via=(--web 8090); fi
+      scrape >"$out/$run.metrics.before"
+      "${client[@]}" stream --session "$session" --width "${size%x*}" --height "${size#*x}" \
+        --frames 1000000 --seconds "${SECONDS_PER_RUN:-10}" --camera-moves 20 \
+        --move-interval "$(awk -v s="${SECONDS_PER_RUN:-10}" 'BEGIN{print s/22}')" \
+        --out "$out/$run.jpg" "${via[@]}" >"$out/$run.json"
+      scrape >"$out/$run.metrics.after"
+      echo "$name $size $transport: $(tr -d '\n ' <"$out/$run.json")"
+      grep -E '^ddgi_(frame|gi_update|encode)_seconds_(sum|count)|^ddgi_(web_)?frames_(rendered|sent|dropped)_total' \
+        "$out/$run.metrics.after"
+    done
+  done
+  "${client[@]}" close --session "$session" >/dev/null
+}
+
+# Several clients on one session: one field update per frame serves all their views.
+multi_view() {
+  local out=$1
   local views=${MULTI_VIEWS:-4} scenes=${SCENES:-cornell_box}
   local scene=${scenes%% *}
   scene=${scene:-cornell_box}
@@ -101,8 +124,6 @@ run() {
     echo "multi $i/$views $multi_size: $(tr -d '\n ' <"$out/multi.$i.json")"
   done
   "${client[@]}" close --session "$session" >/dev/null
-  kill -TERM "$server"
-  wait "$server"
 }
 
 case "${1:-}" in
