@@ -74,7 +74,7 @@ run() {
 }
 
 # One session of SCENE loaded with FIELDS ("default" or a=1,b=2), streamed at every size through
-# every transport. Runs are named SCENE[.FIELDS].SIZE[.web].
+# every transport. Runs are named SCENE[.FIELDS].SIZE[.web]. Called from run(): uses its `client`.
 stream_session() {
   local out=$1 scene=$2 fields=$3 name=$2 load=()
   if [ "$fields" != default ]; then
