@@ -16,10 +16,10 @@ common=(--grids 32x16x32 --rays 64 --frames 20 --warmup 8 --backend pipeline)
 # Clocks up before anything is timed.
 [ "${BENCH:-1}" = 0 ] || ddgi-bench "$scene" "${common[@]}" --frames 60 > /dev/null
 for round in $([ "${BENCH:-1}" = 0 ] || echo 1 2); do
-  for variant in "none" "emitter_samples=1" "emitter_samples=2" \
-                 "emitter_samples=2 probe_bounces=1"; do
+  # Field settings written as LOAD_FIELDS writes them (below): "none" or a=1,b=2.
+  for variant in none emitter_samples=1 emitter_samples=2 emitter_samples=2,probe_bounces=1; do
     fields=()
-    for a in $variant; do [ "$a" = none ] || fields+=(--field "$a"); done
+    for a in ${variant//,/ }; do [ "$a" = none ] || fields+=(--field "$a"); done
     echo "## round $round: $variant" >> "$out/bench.md"
     ddgi-bench "$scene" "${common[@]}" "${fields[@]}" | grep '^| staircase' >> "$out/bench.md"
   done
