@@ -347,7 +347,7 @@ Status run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Before any thread starts (docs/service.md, "Memory"): sessions come and go on threads of
   // their own, and every arena they touch would keep what they freed.
-  ddgi::service::limit_malloc_arenas(4);
+  ddgi::service::limit_malloc_arenas(ddgi::service::kServerMallocArenas);
   const ddgi::Status status = ddgi::service::run(argc, argv);
   if (!status.ok()) {
     std::fprintf(stderr, "ddgi-server: %s\n", status.error().message.c_str());
