@@ -34,7 +34,7 @@ struct BudgetCandidate {
 // The configurations worth measuring for `scene` over `base`: rays per probe 32 to 256, the
 // base grid and one of half the probes per axis over the same extent (single-grid fields), and
 // emitter light both sampled and carried by the field, only where the scene has emissive
-// surfaces.
+// surfaces (sampled with one sample as well, where the base takes more). At most 24.
 std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
                                                const IrradianceFieldParams& base);
 

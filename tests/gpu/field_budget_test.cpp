@@ -84,13 +84,20 @@ TEST_F(FieldBudgetTest, CandidatesVaryOnlyWhatTheSceneHas) {
   EXPECT_EQ(lit[1].name, "rays 32, emitters 2");
   EXPECT_EQ(lit[2].name, "rays 32, coarse");
   // A base that samples emitters already (an emitter-lit scene's default) is varied the other
-  // way: emitter light carried by the field.
+  // way, emitter light carried by the field, and with one sample where it takes more.
   IrradianceFieldParams sampled = base.field;
   sampled.emitter_samples = kSceneEmitterSamples;
   const std::vector<BudgetCandidate> flipped = tools::budget_candidates(emitter_lit_box(), sampled);
-  ASSERT_EQ(flipped.size(), 16u);
-  EXPECT_EQ(flipped[1].name, "rays 32, emitters via field");
-  EXPECT_EQ(flipped[1].assignments.back(), "emitter_samples=0");
+  ASSERT_EQ(flipped.size(), 24u);
+  EXPECT_EQ(flipped[1].name, "rays 32, emitters 1");
+  EXPECT_EQ(flipped[1].assignments.back(), "emitter_samples=1");
+  EXPECT_EQ(flipped[2].name, "rays 32, emitters via field");
+  EXPECT_EQ(flipped[2].assignments.back(), "emitter_samples=0");
+  EXPECT_EQ(flipped[3].name, "rays 32, coarse");
+  sampled.emitter_samples = 1;
+  const std::vector<BudgetCandidate> single = tools::budget_candidates(emitter_lit_box(), sampled);
+  ASSERT_EQ(single.size(), 16u);
+  EXPECT_EQ(single[1].name, "rays 32, emitters via field");
   IrradianceFieldParams coarse = base.field;
   ASSERT_TRUE(field_param_table().apply(coarse, lit[2].assignments).ok());
   EXPECT_EQ(coarse.counts, glm::ivec3(2, 2, 2));
