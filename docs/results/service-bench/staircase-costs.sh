@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Where staircase's 1080p frame time goes with the defaults a session gets today (emitter
 # sampling, the energy calibration's choice), and what the stream gets with fewer emitter
-# samples or a time budget (the field parameter budget_ms: docs/service.md, "Time budget").
+# samples, adaptive rays (settle_threshold: a converged static field traces a slice of its
+# probes per update; off by default, docs/adaptive-rays.md) or a time budget (the field
+# parameter budget_ms: docs/service.md, "Time budget").
 # Usage (on the GPU host, through deploy/gpu-run.sh, with ddgi-bench, ddgi-server and
 # ddgi-client-lean bundled): staircase-costs.sh OUT. Environment: BENCH=0 skips the pass costs;
-# STREAMS (default "default emitter_samples=1 budget_ms=3 budget_ms=2.5"): the sessions
-# streamed, each "default" or comma-separated field assignments (deploy/service-bench.sh's
-# LOAD_FIELDS); STREAM_SECONDS (8).
+# STREAMS (default: the $streams below): the sessions streamed, each "default" or
+# comma-separated field assignments (deploy/service-bench.sh's LOAD_FIELDS); STREAM_SECONDS (8).
 set -uo pipefail
 out=${1:?OUT}
 mkdir -p "$out"
@@ -25,7 +26,8 @@ for round in $([ "${BENCH:-1}" = 0 ] || echo 1 2); do
   done
 done
 # The streams: deploy/service-bench.sh, one session per field variant.
+streams="default emitter_samples=1 settle_threshold=0.01
+  emitter_samples=1,settle_threshold=0.01 budget_ms=3 budget_ms=2.5"
 CARRY=.devcarry SCENES=staircase SIZES=1920x1080 TRANSPORTS=grpc MULTI_VIEWS=0 \
-  SECONDS_PER_RUN="${STREAM_SECONDS:-8}" \
-  LOAD_FIELDS="${STREAMS:-default emitter_samples=1 budget_ms=3 budget_ms=2.5}" \
+  SECONDS_PER_RUN="${STREAM_SECONDS:-8}" LOAD_FIELDS="${STREAMS:-$(echo $streams)}" \
   deploy/service-bench.sh run "$out/streams" | grep -v '^ddgi_' | tee "$out/service.txt"
