@@ -8,8 +8,9 @@
 
 namespace ddgi::service {
 
-// ddgi-server's malloc arena cap: 4, range 1-8 per core. Fewer arenas keep less freed memory
-// resident between sessions; one would serialize every session's allocations on one lock.
+// ddgi-server's malloc arena cap: 4, in [1, 8 x cores] (glibc's own cap is 8 per core). Fewer
+// arenas keep less freed memory resident between sessions; one would serialize every session's
+// allocations on one lock.
 inline constexpr int kServerMallocArenas = 4;
 
 // Caps the number of malloc arenas (mallopt M_ARENA_MAX). Call before threads start: glibc
