@@ -7,7 +7,9 @@
 #   deploy/service-bench.sh bundle        # here: Release ddgi-server + ddgi-client-lean, their
 #                                         # SPIR-V and non-glibc libraries, the real scenes used,
 #                                         # into build-svc-carry/ (ignored by git, carried)
-#   deploy/service-bench.sh run OUT_DIR   # on the GPU host (with the Vulkan loader in .gl/)
+#   deploy/service-bench.sh run OUT_DIR   # on the GPU host (with the Vulkan loader in .gl/);
+#                                         # ends with the run's table (OUT_DIR/table.md)
+#   deploy/service-bench.sh table OUT_DIR # that table again (deploy/service_bench_table.py)
 #
 # Environment for `run`: SCENES (default "cornell_box modern_hall living_room"), SIZES (default
 # "1280x720 1920x1080"), TRANSPORTS (default "grpc web": each stream once through gRPC and once
@@ -71,6 +73,7 @@ run() {
   [ "${MULTI_VIEWS:-4}" = 0 ] || multi_view "$out"
   kill -TERM "$server"
   wait "$server"
+  deploy/service_bench_table.py "$out" | tee "$out/table.md"
 }
 
 # One session of SCENE loaded with FIELDS ("default" or a=1,b=2), streamed at every size through
@@ -129,5 +132,6 @@ multi_view() {
 case "${1:-}" in
   bundle) bundle ;;
   run) run "${2:?usage: deploy/service-bench.sh run OUT_DIR}" ;;
-  *) echo "usage: deploy/service-bench.sh bundle | run OUT_DIR" >&2; exit 2 ;;
+  table) deploy/service_bench_table.py "${2:?usage: deploy/service-bench.sh table OUT_DIR}" ;;
+  *) echo "usage: deploy/service-bench.sh bundle | run OUT_DIR | table OUT_DIR" >&2; exit 2 ;;
 esac
