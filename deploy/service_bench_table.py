@@ -12,6 +12,7 @@ import re
 import sys
 
 RUN = re.compile(r"^(?P<session>.+)\.(?P<size>\d+x\d+)(?P<web>\.web)?\.json$")
+VIEW = re.compile(r"^multi\.(?P<index>\d+)\.json$")
 
 
 def load(path):
@@ -60,7 +61,7 @@ def main():
     if not out.is_dir():
         sys.exit(f"{out}: not a directory (deploy/service-bench.sh run's OUT_DIR)")
     runs = [(p, RUN.match(p.name)) for p in sorted(out.glob("*.json"))]
-    runs = [(p, m) for p, m in runs if m and not p.name.startswith("multi.")]
+    runs = [(p, m) for p, m in runs if m]
     if not runs:
         sys.exit(f"{out}: no stream results (SCENE.WIDTHxHEIGHT.json)")
     print("| session | size | transport | fps | GPU ms/frame (field update) | JPEG encode ms "
@@ -68,8 +69,8 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|---|")
     for path, match in runs:
         print(stream_row(out, path, match))
-    views = [p for p in out.glob("multi.*.json") if re.fullmatch(r"multi\.\d+\.json", p.name)]
-    views.sort(key=lambda p: int(p.name.split(".")[1]))
+    views = [(int(m["index"]), p) for p in out.glob("multi.*.json") if (m := VIEW.match(p.name))]
+    views = [p for _, p in sorted(views)]
     if views:
         fps = [load(p)["fps"] for p in views]
         print(f"\n{len(views)} clients on one session: "

@@ -29,5 +29,5 @@ done
 streams="default emitter_samples=1 settle_threshold=0.01
   emitter_samples=1,settle_threshold=0.01 budget_ms=3 budget_ms=2.5"
 CARRY=.devcarry SCENES=staircase SIZES=1920x1080 TRANSPORTS=grpc MULTI_VIEWS=0 \
-  SECONDS_PER_RUN="${STREAM_SECONDS:-8}" LOAD_FIELDS="${STREAMS:-$(echo $streams)}" \
+  SECONDS_PER_RUN="${STREAM_SECONDS:-8}" LOAD_FIELDS="${STREAMS:-$streams}" \
   deploy/service-bench.sh run "$out/streams" | grep -v '^ddgi_' | tee "$out/service.txt"
