@@ -17,7 +17,8 @@
 # ENCODE_THREADS (8), WARMUP (32), LOAD_FIELDS (default "default": the sessions loaded per scene,
 # each "default" or comma-separated field assignments given to `load --field`, e.g.
 # "default emitter_samples=1 budget_ms=3"), MULTI_VIEWS (4; 0 skips) and MULTI_SIZE (1280x720):
-# that many clients streaming views of one session at that size.
+# that many clients streaming views of one session at that size; SERVER_FLAGS: more ddgi-server
+# flags (e.g. "--submit-ahead-ms 1000 --budget-cache /tmp/calibrations").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # CARRY: a bundle with bin/ (ddgi-server, ddgi-client-lean, spirv/), lib/ and scenes/; `run`
@@ -60,7 +61,8 @@ run() {
   local bin="$PWD/$carry/bin"
   "$bin/ddgi-server" --listen 127.0.0.1:0 --port-file "$out/port" --metrics-port 9464 \
     --max-fps 1000 --encode-threads "${ENCODE_THREADS:-8}" --scene-root scenes \
-    --web-port 8090 --web-address 127.0.0.1 --web-root "$PWD/web" >"$out/server.log" 2>&1 &
+    --web-port 8090 --web-address 127.0.0.1 --web-root "$PWD/web" ${SERVER_FLAGS:-} \
+    >"$out/server.log" 2>&1 &
   local server=$!
   for _ in $(seq 1 600); do [ -s "$out/port" ] && break; sleep 0.1; done
   local client=("$bin/ddgi-client-lean" --server "127.0.0.1:$(cat "$out/port")" --deadline 600)

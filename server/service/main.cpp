@@ -51,6 +51,9 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --encode-threads N        JPEG encoder threads, 1..64; also the most  [2]
                             strips one frame is compressed in at once
   --shutdown-grace S        seconds for streams and sessions to end  [5]
+  --submit-ahead-ms MS      GPU work a session leaves queued when it submits its next frame:
+                            less is less latency from a command to its frame, too little
+                            idles the GPU; 1000: submit at once (no pacing)  [0.5]
   --budget-ms MS            time budget of sessions that set no budget_ms: GPU ms per frame
                             within which each picks its field configuration of lowest
                             measured error (calibrated per scene on load); 0: none  [0]
@@ -131,6 +134,7 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "web-max-connections",
                        "encode-threads",
                        "shutdown-grace",
+                       "submit-ahead-ms",
                        "budget-ms",
                        "budget-frame",
                        "budget-cache",
@@ -210,6 +214,9 @@ Result<ServerOptions> server_options(const Flags& flags) {
   options.encode_threads = static_cast<unsigned>(encode_threads);
   DDGI_ASSIGN_OR_RETURN(const double grace, flags.get_double("shutdown-grace", 5.0, 0.1, 600.0));
   options.shutdown_grace = std::chrono::milliseconds(static_cast<int64_t>(grace * 1000.0));
+  DDGI_ASSIGN_OR_RETURN(
+      options.submit_ahead_ms,
+      flags.get_double("submit-ahead-ms", options.submit_ahead_ms, 0.0, kMaxSubmitAheadMs));
   DDGI_ASSIGN_OR_RETURN(options.default_budget_ms,
                         flags.get_double("budget-ms", 0.0, 0.0, tools::kMaxBudgetMs));
   DDGI_ASSIGN_OR_RETURN(const std::string frame, flags.get_string("budget-frame", "1920x1080"));

@@ -18,6 +18,7 @@
 #include "service/render_service.h"
 #include "service/session_budget.h"
 #include "service/session_registry.h"
+#include "service/submit_pacer.h"
 #include "service/web_gateway.h"
 #include "vk/context.h"
 
@@ -36,6 +37,12 @@ struct ServerOptions {
   WebOptions web;  // the browser client's front (off unless web.port >= 0)
   unsigned encode_threads = 2;
   std::chrono::milliseconds shutdown_grace{5000};  // for streams and frame loops to end
+  // GPU work (ms) a session leaves queued when it submits its next frames (service/
+  // submit_pacer.h), in [0, kMaxSubmitAheadMs]: less lowers the latency from a command to its
+  // frame by as much, too little lets the GPU run dry between frames when the loop wakes late.
+  // 0.5: the loop thread's wake-ups and the frame's submission take tens of microseconds on a
+  // GPU host (the recording time is added to it anyway); 1000: no pacing (--submit-ahead-ms).
+  double submit_ahead_ms = 0.5;
   // The time budget (service/session_budget.h): budget_ms of sessions that set none (0: none;
   // --budget-ms), and how its calibration measures (the budget's frame: --budget-frame).
   double default_budget_ms = 0.0;

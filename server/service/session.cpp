@@ -20,6 +20,7 @@ namespace ddgi::service {
 Session::Session(std::string id, SessionEnv env, SessionOptions options)
     : env_(std::move(env)),
       state_(id, unix_micros(), std::move(options), *env_.limits, *env_.metrics),
+      pacer_(env_.submit_ahead),
       one_off_slots_(id, env_.limits->max_one_off_frames),
       loop_(id, env_.limits->max_fps, *this) {
   to_proto(state_, 0, &summary_);

@@ -33,6 +33,7 @@
 #include "service/session_scene.h"
 #include "service/session_state.h"
 #include "service/session_view.h"
+#include "service/submit_pacer.h"
 #include "vk/context.h"
 
 namespace ddgi::service {
@@ -43,7 +44,8 @@ struct SessionEnv {
   const ServiceLimits* limits = nullptr;
   Metrics* metrics = nullptr;
   FrameEncoder* encoder = nullptr;
-  BudgetService* budget = nullptr;  // the time budget's settings and calibration cache
+  BudgetService* budget = nullptr;        // the time budget's settings and calibration cache
+  SubmitPacer::Millis submit_ahead{0.5};  // ServerOptions::submit_ahead_ms
   // Called on the loop thread after the loop ended and every GPU object is freed.
   std::function<void()> on_loop_exit;
 };
@@ -130,6 +132,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void produce_frame(uint64_t index, const CommandStamp& last_applied) override;
   void after_iteration() override;
   void finish_frames() override;
+  std::chrono::steady_clock::time_point next_submit_time() override;
   void tear_down(const Error& why, bool failed) override;
 
   // Frames (session_frames.cpp).
@@ -144,10 +147,14 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   Result<InFlightFrame> submit_frame(const std::shared_ptr<FrameBatch>& batch,
                                      const std::string& view_id, const ViewConfig& config,
                                      const Camera& camera, FrameTarget& target);
-  // Reads a frame back and hands it to the encoder, or fails its streams and waiters.
-  void deliver(InFlightFrame& frame);
-  // Delivers the frames in flight of batches before `index`, oldest first.
-  void deliver_older_than(uint64_t index);
+  // Reads a frame back and hands it to the encoder, or fails its streams and waiters; returns
+  // its GPU time (0 if it failed).
+  SubmitPacer::Millis deliver(InFlightFrame& frame);
+  // Delivers the frames in flight of batches before `index`, oldest first, and tells the pacer
+  // when the GPU was done with them: when the newest one's wait returned. `newest_first`: that
+  // wait comes before any readback (each older frame then waits for the newest; else each is
+  // read back as soon as it is done and the time comes after the older ones' copies).
+  void deliver_older_than(uint64_t index, bool newest_first);
   // After an iteration's frames: updates the field if no frame did, and offers its snapshot to
   // every probe stream (the frames are finished first: the snapshot reads the field back).
   void stream_probes(const std::shared_ptr<FrameBatch>& batch);
@@ -178,6 +185,7 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   // Owned by the loop thread.
   SessionState state_;
   std::deque<InFlightFrame> in_flight_;  // in submission order; after state_, freed before it
+  SubmitPacer pacer_;                    // when in_flight_ wants the next batch
   // Shared with RPC threads.
   mutable std::mutex summary_mutex_;
   v1::SessionSummary summary_;

@@ -3,7 +3,9 @@
 // by all of them), then reads back the previous iteration's frames, which the GPU ran while
 // these were recorded, and hands them to the encoder; one-off frames are drawn last, one at a
 // time (service/session.h). Views alternate between two frame targets, so a view has at most
-// two frames in flight and never draws into a target whose frame is not read back.
+// two frames in flight and never draws into a target whose frame is not read back. The frames
+// in flight pace the loop (next_submit_time): the next iteration starts when the GPU is about to
+// finish them (service/submit_pacer.h), not as soon as the previous iteration's are read back.
 #include <chrono>
 #include <limits>
 
@@ -22,9 +24,14 @@ void Session::produce_frame(uint64_t index, const CommandStamp& last_applied) {
   batch->index = index;
   batch->last_applied = last_applied;
   batch->field_due = field() != nullptr || shadow_field() != nullptr;
+  const auto recording = std::chrono::steady_clock::now();
   render_views(batch);
+  if (!in_flight_.empty() && in_flight_.back().batch->index == index) {
+    pacer_.submitted(index, std::chrono::steady_clock::now() - recording);
+  }
   // This iteration's frames are on the queue behind the previous one's: read those back now.
-  deliver_older_than(index);
+  // The loop was paced to come here as they end, when the older ones are long done.
+  deliver_older_than(index, true);
   render_one_offs(batch);
   stream_probes(batch);
 }
@@ -54,7 +61,11 @@ void Session::stream_probes(const std::shared_ptr<FrameBatch>& batch) {
 }
 
 void Session::finish_frames() {
-  deliver_older_than(std::numeric_limits<uint64_t>::max());
+  deliver_older_than(std::numeric_limits<uint64_t>::max(), false);
+}
+
+std::chrono::steady_clock::time_point Session::next_submit_time() {
+  return pacer_.next_submit();
 }
 
 void Session::after_iteration() {
@@ -185,7 +196,7 @@ Result<Session::InFlightFrame> Session::submit_frame(const std::shared_ptr<Frame
   return frame;
 }
 
-void Session::deliver(InFlightFrame& frame) {
+SubmitPacer::Millis Session::deliver(InFlightFrame& frame) {
   Result<FrameResult> result = frame.pending.finish();
   frame.target.reset();
   EncodeJob& job = *frame.job;
@@ -194,11 +205,13 @@ void Session::deliver(InFlightFrame& frame) {
                 << result.error().message;
     for (auto& stream : job.streams) stream->finish(to_grpc(result.error()));
     for (auto& waiter : job.waiters) waiter(result.error());
-    return;
+    return SubmitPacer::Millis(0.0);
   }
   FrameBatch& batch = *frame.batch;
   FrameRecord& record = frame.record;
+  SubmitPacer::Millis gpu{0.0};
   for (const vk::PassTime& pass : result->pass_times) {
+    gpu += SubmitPacer::Millis(pass.milliseconds);
     const bool gi_pass =
         pass.group == vk::PassGroup::kIrradianceField || pass.group == vk::PassGroup::kShadowField;
     if (!gi_pass) {
@@ -221,13 +234,29 @@ void Session::deliver(InFlightFrame& frame) {
       planes.cb_offset, planes.cr_offset, std::move(result->yuv420)};
   to_proto(record, &job.frame);
   env_.encoder->submit(std::move(frame.job));
+  return gpu;
 }
 
-void Session::deliver_older_than(uint64_t index) {
-  while (!in_flight_.empty() && in_flight_.front().batch->index < index) {
+void Session::deliver_older_than(uint64_t index, bool newest_first) {
+  size_t count = 0;
+  while (count < in_flight_.size() && in_flight_[count].batch->index < index) ++count;
+  if (count == 0) return;
+  // The GPU runs frames in submission order: when the newest is done, it is done with them all
+  // and starts the next batch, the time the pacer needs. Seen after the older frames' readback
+  // copies, that time would come too late. A failed wait fails its finish() too.
+  std::chrono::steady_clock::time_point done_at{};
+  if (newest_first) {
+    (void)in_flight_[count - 1].pending.wait();
+    done_at = std::chrono::steady_clock::now();
+  }
+  for (; count > 0; --count) {
     InFlightFrame frame = std::move(in_flight_.front());
     in_flight_.pop_front();
-    deliver(frame);
+    if (!newest_first) {
+      (void)frame.pending.wait();
+      done_at = std::chrono::steady_clock::now();
+    }
+    pacer_.finished(frame.batch->index, done_at, deliver(frame));
   }
 }
 

@@ -1,6 +1,7 @@
 // The session's command queue, sequencing, frame pacing and teardown (service/session_loop.h).
 #include "service/session_loop.h"
 
+#include <algorithm>
 #include <thread>
 
 #include "core/log.h"
@@ -72,7 +73,14 @@ bool SessionLoop::wait_for_work(std::deque<Command>& batch) {
   while (!stopping_ && queue_.empty()) {
     const bool wanted = owner_.wants_frame();
     const auto next = last_frame_start_ + interval_;
-    if (wanted && std::chrono::steady_clock::now() >= next) break;
+    const auto paced = wanted ? owner_.next_submit_time() : std::chrono::steady_clock::time_point{};
+    if (wanted && std::chrono::steady_clock::now() >= std::max(next, paced)) break;
+    if (wanted && paced >= next) {
+      // The frames in flight, not the frame rate, hold the next one back: they stay in flight
+      // (the GPU is running them), and a command arriving wakes the loop to apply it.
+      wake_.wait_until(lock, paced);
+      continue;
+    }
     if (!finished) {  // about to sleep: what is in flight is delivered now, not a frame later
       lock.unlock();
       owner_.finish_frames();
@@ -101,7 +109,8 @@ void SessionLoop::apply(std::deque<Command>& batch) {
 }
 
 bool SessionLoop::frame_due() const {
-  return owner_.wants_frame() && std::chrono::steady_clock::now() >= last_frame_start_ + interval_;
+  const auto next = std::max(last_frame_start_ + interval_, owner_.next_submit_time());
+  return owner_.wants_frame() && std::chrono::steady_clock::now() >= next;
 }
 
 void SessionLoop::finish() {

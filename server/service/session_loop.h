@@ -1,11 +1,11 @@
 // The engine of a session, apart from what the session holds: a command queue that one thread
 // runs in arrival order, the sequence numbers that say which command a frame already shows,
-// frame pacing (at most --max-fps frames a second, none while nobody waits for one) and the
-// order of teardown. Frames are pipelined: an iteration's frames are read back during the next
-// iteration, after its frames were submitted, or before the loop sleeps (finish_frames), so a
-// paced or idle loop still delivers each frame as soon as the GPU is done with it. It knows nothing
-// of scenes, views or the wire: its owner says whether a frame is wanted, produces it, and frees
-// its state when the loop ends.
+// frame pacing (at most --max-fps frames a second, none while nobody waits for one, none before
+// the owner's frames in flight are nearly done) and the order of teardown. Frames are pipelined: an
+// iteration's frames are read back during the next iteration, after its frames were submitted, or
+// before the loop sleeps (finish_frames), so a paced or idle loop still delivers each frame as soon
+// as the GPU is done with it. It knows nothing of scenes, views or the wire: its owner says whether
+// a frame is wanted, produces it, and frees its state when the loop ends.
 #pragma once
 
 #include <chrono>
@@ -48,6 +48,11 @@ class SessionLoop {
     virtual void produce_frame(uint64_t index, const CommandStamp& last_applied) = 0;
     // The loop is about to sleep (no frame due): finish every frame still in flight.
     virtual void finish_frames() = 0;
+    // The earliest time to start the next frame, however soon the frame rate allows it: the
+    // frames in flight pace the loop (service/submit_pacer.h). Waiting for it, the loop keeps
+    // them in flight. The clock's epoch: at once. Called under the loop's lock, like
+    // wants_frame().
+    virtual std::chrono::steady_clock::time_point next_submit_time() = 0;
     // After every iteration (commands, and a frame if one was due).
     virtual void after_iteration() = 0;
     // Once, after stop(): queued commands have failed with `why`; end streams and free
@@ -90,6 +95,7 @@ class SessionLoop {
   // Waits for commands or a due frame; false once stopped.
   bool wait_for_work(std::deque<Command>& batch);
   void apply(std::deque<Command>& batch);
+  // Someone waits for a frame, the frame rate allows it and the frames in flight ask for it.
   bool frame_due() const;
   void finish();
 
