@@ -25,6 +25,11 @@ if "$server_bin" --energy-calibration maybe >"$work/bad_flag.txt" 2>&1; then
 fi
 grep -q -- "--energy-calibration must be auto, on or off (got 'maybe')" "$work/bad_flag.txt" ||
   { cat "$work/bad_flag.txt" >&2; fail "the bad --energy-calibration value is not named"; }
+if "$server_bin" --submit-ahead-ms -1 >"$work/bad_flag.txt" 2>&1; then
+  fail "ddgi-server started with --submit-ahead-ms -1"
+fi
+grep -q -- "--submit-ahead-ms must be in \[0, 1000\] (got -1)" "$work/bad_flag.txt" ||
+  { cat "$work/bad_flag.txt" >&2; fail "the bad --submit-ahead-ms value is not named"; }
 
 "$server_bin" --listen 127.0.0.1:0 --port-file "$work/port" --metrics-port -1 \
   --scene-root "$scene_root" --max-fps 30 --validation --web-port 0 --web-address 127.0.0.1 \
