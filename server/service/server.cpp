@@ -40,11 +40,7 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   DDGI_TRY(validate(options.limits));
   DDGI_TRY(tools::validate(options.budget_calibration));
   if (options.default_budget_ms != 0.0) DDGI_TRY(tools::check_budget_ms(options.default_budget_ms));
-  if (!(options.submit_ahead_ms >= 0.0 && options.submit_ahead_ms <= kMaxSubmitAheadMs)) {
-    return invalid_argument("--submit-ahead-ms must be in [0, " +
-                            std::to_string(kMaxSubmitAheadMs) + "] (got " +
-                            std::to_string(options.submit_ahead_ms) + ")");
-  }
+  DDGI_TRY(check_submit_ahead_ms(options.submit_ahead_ms));
   if (options.tls_cert_file.empty() != options.tls_key_file.empty()) {
     return invalid_argument("TLS needs both --tls-cert and --tls-key");
   }

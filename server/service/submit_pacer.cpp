@@ -2,8 +2,16 @@
 #include "service/submit_pacer.h"
 
 #include <algorithm>
+#include <sstream>
 
 namespace ddgi::service {
+
+Status check_submit_ahead_ms(double ahead_ms) {
+  if (ahead_ms >= 0.0 && ahead_ms <= kMaxSubmitAheadMs) return ok_status();
+  std::ostringstream text;
+  text << "--submit-ahead-ms must be in [0, " << kMaxSubmitAheadMs << "] (got " << ahead_ms << ")";
+  return invalid_argument(text.str());
+}
 
 void SubmitPacer::submitted(uint64_t index, Millis recording) {
   submitted_ = index;

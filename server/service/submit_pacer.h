@@ -16,12 +16,18 @@
 #include <cstdint>
 #include <optional>
 
+#include "core/result.h"
+
 namespace ddgi::service {
 
 // The largest `ahead` a server takes (--submit-ahead-ms): a second of queued GPU work is no
 // pacing at all; anything above a frame's GPU time submits as soon as the previous batch is read
 // back, as the loop did before pacing.
 inline constexpr double kMaxSubmitAheadMs = 1000.0;
+
+// INVALID_ARGUMENT naming --submit-ahead-ms and its range unless `ahead_ms` is in
+// [0, kMaxSubmitAheadMs].
+Status check_submit_ahead_ms(double ahead_ms);
 
 class SubmitPacer {
  public:

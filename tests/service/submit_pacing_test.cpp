@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <future>
 #include <mutex>
@@ -69,6 +70,19 @@ TEST(SubmitPacerTest, AheadBeyondTheQueuedWorkSubmitsAtOnce) {
   pacer.submitted(2, Millis(0.1));
   pacer.finished(1, at_ms(5000.0), Millis(4.0));
   EXPECT_LE(pacer.next_submit(), at_ms(5000.0));
+}
+
+// What ddgi-server and Server::start take (the flag's own parse refuses the same values).
+// Fault planted once: the check without its lower bound; -1 passed and the test failed.
+TEST(SubmitPacerTest, AheadOutsideItsRangeIsRefusedByName) {
+  for (double ok : {0.0, 0.5, service::kMaxSubmitAheadMs}) {
+    EXPECT_TRUE(service::check_submit_ahead_ms(ok).ok()) << ok;
+  }
+  const Status negative = service::check_submit_ahead_ms(-1.0);
+  ASSERT_FALSE(negative.ok());
+  EXPECT_EQ(negative.error().message, "--submit-ahead-ms must be in [0, 1000] (got -1)");
+  EXPECT_FALSE(service::check_submit_ahead_ms(1000.5).ok());
+  EXPECT_FALSE(service::check_submit_ahead_ms(std::nan("")).ok());
 }
 
 // What the loop did and when.
