@@ -65,7 +65,7 @@ TEST(SubmitPacerTest, NextBatchWhenTheQueuedOnesAreNearlyDone) {
 
 // Submit-at-once, as the loop was before pacing: an `ahead` longer than the frames.
 TEST(SubmitPacerTest, AheadBeyondTheQueuedWorkSubmitsAtOnce) {
-  SubmitPacer pacer(Millis(service::kMaxSubmitAheadMs));
+  SubmitPacer pacer{Millis(service::kMaxSubmitAheadMs)};
   pacer.submitted(1, Millis(0.1));
   pacer.submitted(2, Millis(0.1));
   pacer.finished(1, at_ms(5000.0), Millis(4.0));
