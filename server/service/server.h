@@ -40,9 +40,8 @@ struct ServerOptions {
   // GPU work (ms) a session leaves queued when it submits its next frames (service/
   // submit_pacer.h), in [0, kMaxSubmitAheadMs]: less lowers the latency from a command to its
   // frame by as much, too little lets the GPU run dry between frames when the loop wakes late.
-  // 0.5: the loop thread's wake-ups and the frame's submission take tens of microseconds on a
-  // GPU host (the recording time is added to it anyway); 1000: no pacing (--submit-ahead-ms).
-  double submit_ahead_ms = 0.5;
+  // kDefaultSubmitAheadMs (0.5) says why its default; 1000: no pacing (--submit-ahead-ms).
+  double submit_ahead_ms = kDefaultSubmitAheadMs;
   // The time budget (service/session_budget.h): budget_ms of sessions that set none (0: none;
   // --budget-ms), and how its calibration measures (the budget's frame: --budget-frame).
   double default_budget_ms = 0.0;

@@ -44,8 +44,8 @@ struct SessionEnv {
   const ServiceLimits* limits = nullptr;
   Metrics* metrics = nullptr;
   FrameEncoder* encoder = nullptr;
-  BudgetService* budget = nullptr;        // the time budget's settings and calibration cache
-  SubmitPacer::Millis submit_ahead{0.5};  // ServerOptions::submit_ahead_ms
+  BudgetService* budget = nullptr;  // the time budget's settings and calibration cache
+  SubmitPacer::Millis submit_ahead{kDefaultSubmitAheadMs};  // ServerOptions::submit_ahead_ms
   // Called on the loop thread after the loop ended and every GPU object is freed.
   std::function<void()> on_loop_exit;
 };

@@ -24,6 +24,10 @@ namespace ddgi::service {
 // pacing at all; anything above a frame's GPU time submits as soon as the previous batch is read
 // back, as the loop did before pacing.
 inline constexpr double kMaxSubmitAheadMs = 1000.0;
+// The `ahead` a server takes unless told (ServerOptions::submit_ahead_ms): the loop thread's
+// wake-ups and a frame's submission take tens of microseconds on a GPU host, and the recording
+// time is added to it anyway.
+inline constexpr double kDefaultSubmitAheadMs = 0.5;
 
 // INVALID_ARGUMENT naming --submit-ahead-ms and its range unless `ahead_ms` is in
 // [0, kMaxSubmitAheadMs].
@@ -34,8 +38,8 @@ class SubmitPacer {
   using Clock = std::chrono::steady_clock;
   using Millis = std::chrono::duration<double, std::milli>;
 
-  // `ahead`: GPU work still queued when the next batch is submitted (ServerOptions::
-  // submit_ahead_ms says why its default is what it is).
+  // `ahead`: GPU work still queued when the next batch is submitted (kDefaultSubmitAheadMs
+  // unless the server was told otherwise).
   explicit SubmitPacer(Millis ahead) : ahead_(ahead) {}
 
   // Batch `index` (increasing) was submitted; recording its frames took `recording`.
