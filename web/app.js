@@ -15,6 +15,7 @@ const state = {
   socket: null,
   serverInfo: null,
   session: null, // SessionInfo
+  field: null, // the session's FieldParams as last shown
   viewId: null,
   camera: null, // OrbitCamera, once the first frame of a stream shows where it is
   cameraDirty: false,
@@ -325,35 +326,57 @@ function paramValue(field, name) {
 const shortNumber = (text) => (text === '' ? '' : String(Number(Number(text).toPrecision(4))));
 
 function showField(field) {
+  state.field = field;
   $('hysteresis').value = shortNumber(paramValue(field, 'hysteresis'));
   $('rays').value = paramValue(field, 'rays_per_probe');
   $('field-info').textContent = field?.probes
     ? `${field.probes} probes, ${(Number(field.gpuBytes) / 2 ** 20).toFixed(1)} MiB, ` +
       `${field.updates} updates`
     : 'no irradiance field';
-  // The time budget's choice (FieldParams.budget), while the field follows one.
+  // The rule's choice (FieldParams.budget), while the field follows it, and what it misses.
   const budget = field?.budget;
+  const fixed = (value, digits) => Number(value ?? 0).toFixed(digits);
   $('budget-info').textContent = budget
     ? `Budget ${budget.budgetMs} ms at ${budget.width}x${budget.height}: ${budget.configuration}, ` +
-      `measured ${Number(budget.costMs).toFixed(2)} ms, FLIP ${Number(budget.flip).toFixed(3)} ` +
-      `(${budget.candidates} configurations${budget.fromCache ? ', calibrated before' : ''})`
+      `measured ${fixed(budget.costMs, 2)} ms, FLIP ${fixed(budget.flip, 3)} ` +
+      `± ${fixed(budget.flipNoise, 3)}, light ${fixed(budget.meanRatio, 3)} of the reference ` +
+      `(${budget.candidates} configurations${budget.fromCache ? ', calibrated before' : ''})` +
+      (budget.note ? `. ${budget.note}` : '')
     : '';
-  // The energy calibration's choice (FieldParams.energy), made on load where the server runs it.
-  // Proto3 JSON leaves zeros out (a black view's ratios).
-  const energy = field?.energy;
-  const fixed = (value) => Number(value ?? 0).toFixed(3);
-  $('energy-info').textContent = energy
-    ? `Light kept: ${energy.configuration}, mean/ref ${fixed(energy.meanRatio)} / ` +
-      `${fixed(energy.indirectRatio)} (frame / field part; static default ` +
-      `${fixed(energy.defaultMeanRatio)} / ${fixed(energy.defaultIndirectRatio)})`
-    : '';
+  $('calibration-info').textContent = describeCalibration(field?.calibration);
+}
+
+// FieldParams.calibration as a line: its state, progress and the switch (proto3 JSON leaves
+// zeros and false out).
+function describeCalibration(calibration) {
+  if (!calibration) return '';
+  const seconds = Number(calibration.seconds ?? 0).toFixed(1);
+  const budget = `budget ${calibration.budgetMs ?? 0} ms`;
+  switch (calibration.state) {
+    case 'STATE_QUEUED':
+      return `Calibration queued (${seconds} s); streaming the static default, ${budget}`;
+    case 'STATE_RUNNING':
+      return `Calibrating: ${calibration.candidatesDone ?? 0}/${calibration.candidates} ` +
+        `configurations measured (${seconds} s); streaming the static default, ${budget}`;
+    case 'STATE_DONE':
+      if (calibration.fromCache) return `Calibrated before: chosen at load, ${budget}`;
+      return calibration.switched
+        ? `Calibrated: switched to the choice ${seconds} s after the load, ${budget}`
+        : `Calibrated; ${calibration.message ?? ''}`;
+    case 'STATE_FAILED':
+      return `Calibration failed: ${calibration.message ?? ''}; streaming the static default`;
+    case 'STATE_OFF':
+      return `No calibration: ${calibration.message ?? ''}; ${budget}`;
+    default:
+      return '';
+  }
 }
 
 // Asks the server for its best field configuration within the budget (field parameter
-// budget_ms; empty or 0 ends it). Calibrating a new scene takes a few seconds.
+// budget_ms; empty or 0 returns to the server's default budget). The choice comes from the
+// scene's calibration, which runs in the background after a load.
 async function applyBudget() {
   const value = $('budget').value.trim() === '' ? '0' : $('budget').value.trim();
-  $('budget-info').textContent = value === '0' ? '' : 'calibrating...';
   try {
     const field = await state.socket.call('setFieldParams', {
       sessionId: state.session.sessionId,
@@ -492,6 +515,19 @@ function bindControls() {
   }
   window.addEventListener('resize', resized);
   setInterval(updateStats, 250);
+  setInterval(followCalibration, 1000);
+}
+
+// While the session's calibration is queued or running, its field is asked for once a second,
+// so that the page shows the progress and the switch to the calibrated choice.
+async function followCalibration() {
+  const calibration = state.field?.calibration;
+  if (!state.session || !['STATE_QUEUED', 'STATE_RUNNING'].includes(calibration?.state)) return;
+  try {
+    showField(await state.socket.call('getFieldParams', { sessionId: state.session.sessionId }));
+  } catch (error) {
+    showError(describe(error));
+  }
 }
 
 bindControls();

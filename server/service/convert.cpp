@@ -476,8 +476,8 @@ void to_proto(const IrradianceField& field, uint64_t command_seq, v1::FieldParam
 
 void to_proto(const SessionScene& scene, uint64_t command_seq, v1::FieldParams* out) {
   to_proto(*scene.field(), command_seq, out);
-  if (scene.budget()) to_proto(*scene.budget(), out->mutable_budget());
-  if (scene.energy()) to_proto(*scene.energy(), out->mutable_energy());
+  if (scene.budget()) to_proto(*scene.budget(), scene.label(), out->mutable_budget());
+  scene.calibration_to_proto(out->mutable_calibration());
 }
 
 void to_proto(const ShadowField& field, uint64_t command_seq, v1::FieldParams* out) {

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -54,24 +56,50 @@ NOT_SERVING and the process exits with status 1, for its supervisor to restart i
   --submit-ahead-ms MS      GPU work a session leaves queued when it submits its next frame:
                             less is less latency from a command to its frame, too little
                             idles the GPU; 1000: submit at once (no pacing)  [0.5]
-  --budget-ms MS            time budget of sessions that set no budget_ms: GPU ms per frame
-                            within which each picks its field configuration of lowest
-                            measured error (calibrated per scene on load); 0: none  [0]
-  --budget-frame WxH        the frame a time budget pays for          [1920x1080]
-  --budget-cache DIR        keep budget calibrations in DIR too (created if missing), so a
-                            restarted server does not calibrate a scene again  [memory only]
-  --energy-calibration M    auto | on | off: a session that sets none of probe_bounces,
-                            self_shadow_bias, irradiance_gamma, pixel_paths,
-                            pixel_path_vertices gets those of the settings,
-                            measured on load (cached like a budget's), that keep its frame's
-                            light within 3% of a path tracer's (docs/service.md, "Energy
-                            calibration"); auto: on a GPU, off on a CPU device (lavapipe),
-                            where it takes about a minute per scene  [auto]
+  --budget-ms MS            GPU ms per frame of a session that sets no budget_ms: the rule
+                            picks the configuration of lowest measured error (FLIP, plus light
+                            beyond 5% of the path tracer's) that fits; the cheapest where none
+                            does (docs/service.md, "The session's configuration")  [4]
+  --budget-frame WxH        the frame a budget pays for               [1920x1080]
+  --calibration M           auto | on | off: measure each scene's candidate configurations in
+                            the background while its sessions stream the static default, then
+                            switch them to the choice; auto: on a GPU, off on a CPU device
+                            (lavapipe), where it takes minutes per scene  [auto]
+  --calibration-share X     the share of GPU time a calibration may take, (0, 1]  [0.333]
+  --budget-cache DIR        where calibrations are kept, so a restarted server does not
+                            calibrate a scene again; none: memory only
+                            [$XDG_CACHE_HOME/ddgi, else $HOME/.cache/ddgi]
   --device NAME             Vulkan device whose name contains NAME
   --backend B               auto | query | pipeline                  [auto]
   --validation              Vulkan validation layers (any message is logged)
   --log-level L             debug | info | warning | error           [info]
 )";
+
+// The calibration cache's default: $XDG_CACHE_HOME/ddgi, else $HOME/.cache/ddgi, else none
+// (memory only) where neither is set.
+std::string default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    return std::string(xdg) + "/ddgi";
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return std::string(home) + "/.cache/ddgi";
+  }
+  return "";
+}
+
+// The default where it can be made; else memory only, with a warning (a read-only home in a
+// container must not stop the server; a --budget-cache given explicitly must be usable).
+std::string usable_default_cache_dir() {
+  const std::string dir = default_cache_dir();
+  std::error_code error;
+  if (!dir.empty()) std::filesystem::create_directories(dir, error);
+  if (dir.empty() || error || ::access(dir.c_str(), W_OK) != 0) {
+    LOG_WARNING << "calibrations kept in memory only: the default cache folder '" << dir
+                << "' cannot be written (--budget-cache DIR names another)";
+    return "";
+  }
+  return dir;
+}
 
 std::string default_web_root() {
 #ifdef DDGI_DEFAULT_WEB_ROOT
@@ -138,7 +166,8 @@ Result<Flags> parse_flags(int argc, char** argv) {
                        "budget-ms",
                        "budget-frame",
                        "budget-cache",
-                       "energy-calibration",
+                       "calibration",
+                       "calibration-share",
                        "device",
                        "backend",
                        "log-level"},
@@ -217,8 +246,12 @@ Result<ServerOptions> server_options(const Flags& flags) {
   DDGI_ASSIGN_OR_RETURN(
       options.submit_ahead_ms,
       flags.get_double("submit-ahead-ms", options.submit_ahead_ms, 0.0, kMaxSubmitAheadMs));
-  DDGI_ASSIGN_OR_RETURN(options.default_budget_ms,
-                        flags.get_double("budget-ms", 0.0, 0.0, tools::kMaxBudgetMs));
+  DDGI_ASSIGN_OR_RETURN(
+      options.default_budget_ms,
+      flags.get_double("budget-ms", options.default_budget_ms, 1e-3, tools::kMaxBudgetMs));
+  DDGI_ASSIGN_OR_RETURN(
+      options.calibration_share,
+      flags.get_double("calibration-share", options.calibration_share, 1e-3, 1.0));
   DDGI_ASSIGN_OR_RETURN(const std::string frame, flags.get_string("budget-frame", "1920x1080"));
   const std::vector<std::string> sides = split(frame, 'x');
   if (sides.size() != 2) return invalid_argument("--budget-frame '" + frame + "' is not WxH");
@@ -229,16 +262,19 @@ Result<ServerOptions> server_options(const Flags& flags) {
   }
   options.budget_calibration.width = static_cast<uint32_t>(width);
   options.budget_calibration.height = static_cast<uint32_t>(height);
-  DDGI_ASSIGN_OR_RETURN(options.budget_cache_dir, flags.get_string("budget-cache", ""));
+  DDGI_ASSIGN_OR_RETURN(const std::string cache, flags.get_string("budget-cache", ""));
+  options.budget_cache_dir = cache == "none" ? ""
+                             : cache.empty() ? usable_default_cache_dir()
+                                             : cache;
   return options;
 }
 
-// --energy-calibration: on or off as given; nothing for auto (decided by the device).
-Result<std::optional<bool>> energy_calibration_mode(const Flags& flags) {
-  DDGI_ASSIGN_OR_RETURN(const std::string mode, flags.get_string("energy-calibration", "auto"));
+// --calibration: on or off as given; nothing for auto (decided by the device).
+Result<std::optional<bool>> calibration_mode(const Flags& flags) {
+  DDGI_ASSIGN_OR_RETURN(const std::string mode, flags.get_string("calibration", "auto"));
   if (mode == "auto") return std::optional<bool>();
   if (mode == "on" || mode == "off") return std::optional<bool>(mode == "on");
-  return invalid_argument("--energy-calibration must be auto, on or off (got '" + mode + "')");
+  return invalid_argument("--calibration must be auto, on or off (got '" + mode + "')");
 }
 
 Result<vk::ContextOptions> context_options(const Flags& flags, uint64_t memory_budget_bytes) {
@@ -315,17 +351,19 @@ Status run(int argc, char** argv) {
     g_device_lost = true;
     kill(getpid(), kDeviceLostSignal);  // wakes serve_until_stopped
   };
-  DDGI_ASSIGN_OR_RETURN(const std::optional<bool> energy, energy_calibration_mode(flags));
+  DDGI_ASSIGN_OR_RETURN(const std::optional<bool> calibration, calibration_mode(flags));
   DDGI_ASSIGN_OR_RETURN(const std::string port_file, flags.get_string("port-file", ""));
   DDGI_ASSIGN_OR_RETURN(const vk::ContextOptions vulkan,
                         context_options(flags, options.limits.gpu_memory_budget_bytes));
   const sigset_t signals = block_stop_signals();
 
   DDGI_ASSIGN_OR_RETURN(auto context, vk::Context::create(vulkan));
-  options.energy_calibration = energy.value_or(!context->caps().cpu);
-  if (!energy && context->caps().cpu) {
-    LOG_INFO << "energy calibration off on a CPU device (" << context->caps().device_name
-             << "), where it takes about a minute per scene: --energy-calibration on turns it on";
+  options.calibration = calibration.value_or(!context->caps().cpu);
+  if (!calibration && context->caps().cpu) {
+    options.calibration_off_reason = "no calibration on a CPU device (" +
+                                     context->caps().device_name +
+                                     "), where it takes minutes per scene: --calibration on";
+    LOG_INFO << options.calibration_off_reason;
   }
   DDGI_ASSIGN_OR_RETURN(auto server, Server::start(*context, options));
   if (!port_file.empty()) write_port_file(port_file, server->port());

@@ -39,7 +39,8 @@ class WithoutReflection : public grpc::ServerBuilderOption {
 Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOptions options) {
   DDGI_TRY(validate(options.limits));
   DDGI_TRY(tools::validate(options.budget_calibration));
-  if (options.default_budget_ms != 0.0) DDGI_TRY(tools::check_budget_ms(options.default_budget_ms));
+  DDGI_TRY(tools::check_budget_ms(options.default_budget_ms));
+  DDGI_TRY(check_calibration_share(options.calibration_share));
   DDGI_TRY(check_submit_ahead_ms(options.submit_ahead_ms));
   if (options.tls_cert_file.empty() != options.tls_key_file.empty()) {
     return invalid_argument("TLS needs both --tls-cert and --tls-key");
@@ -55,8 +56,11 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.submit_ahead = SubmitPacer::Millis(options.submit_ahead_ms);
   server->budget_.default_ms = options.default_budget_ms;
   server->budget_.calibration = options.budget_calibration;
-  server->budget_.energy = options.energy_calibration;
-  server->budget_.energy_calibration = options.energy_options;
+  server->budget_.calibrate = options.calibration;
+  server->budget_.off_reason = options.calibration_off_reason;
+  if (options.calibration) {
+    server->budget_.calibrator = std::make_unique<Calibrator>(options.calibration_share);
+  }
   if (const Status kept = server->budget_.cache.persist_in(options.budget_cache_dir); !kept.ok()) {
     return invalid_argument("--budget-cache: " + kept.error().message);
   }

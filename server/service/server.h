@@ -42,17 +42,19 @@ struct ServerOptions {
   // frame by as much, too little lets the GPU run dry between frames when the loop wakes late.
   // kDefaultSubmitAheadMs (0.5) says why its default; 1000: no pacing (--submit-ahead-ms).
   double submit_ahead_ms = kDefaultSubmitAheadMs;
-  // The time budget (service/session_budget.h): budget_ms of sessions that set none (0: none;
-  // --budget-ms), and how its calibration measures (the budget's frame: --budget-frame).
-  double default_budget_ms = 0.0;
+  // A session's configuration (service/session_budget.h): the budget of sessions that set no
+  // budget_ms (--budget-ms), how a calibration measures (its frame: --budget-frame), where
+  // calibrations are kept (--budget-cache; empty: memory only).
+  double default_budget_ms = tools::kDefaultBudgetMs;
   tools::CalibrationOptions budget_calibration;
-  std::string budget_cache_dir;  // calibrations kept on disk too (--budget-cache); empty: none
-  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters.
-  // ddgi-server turns it on on a GPU (--energy-calibration auto, its default); off here, so that
-  // a test or an embedder that did not ask pays no calibration on load.
-  bool energy_calibration = false;
-  // How it measures (tests shrink it).
-  tools::CalibrationOptions energy_options = tools::energy_calibration_options();
+  std::string budget_cache_dir;
+  // Whether scenes are calibrated in the background (--calibration). ddgi-server turns it on on
+  // a GPU (--calibration auto, its default); off here, so that a test or an embedder that did
+  // not ask pays no calibration. `calibration_off_reason` is what sessions report then.
+  bool calibration = false;
+  std::string calibration_off_reason = "the server calibrates no scene (--calibration off)";
+  // The share of GPU time a calibration may take, (0, 1] (--calibration-share).
+  double calibration_share = kDefaultCalibrationShare;
   // Runs once when the GPU device is lost (vk::Context::device_lost), after the server turned
   // health NOT_SERVING, refused new work and ended every session with the loss as their status;
   // on the thread that saw the loss, which it must not block. ddgi-server exits then, so its

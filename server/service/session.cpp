@@ -66,7 +66,26 @@ Status Session::load(const SceneRequest& request) {
   // not depend on the scene and stay.
   state_.scene = std::move(scene);
   for (auto& [view_id, view] : state_.views.all()) view.camera = state_.scene->default_camera();
+  // The calibration runs beside the frames; its choice is adopted on this loop once it lands.
+  state_.scene->start_calibration(*env_.budget, [weak = weak_from_this()] {
+    if (const std::shared_ptr<Session> self = weak.lock()) self->adopt_calibration();
+  });
   return ok_status();
+}
+
+void Session::adopt_calibration() {
+  loop_.enqueue_sync(
+      true,
+      [this]() -> Status {
+        if (!state_.scene) return ok_status();
+        finish_frames();  // the field's parameters change under no frame in flight
+        return state_.scene->adopt_calibration(state_.id);
+      },
+      [id = state_.id](const Status& status) {
+        if (!status.ok()) {
+          LOG_WARNING << "calibration not adopted session=" << id << ": " << status.error().message;
+        }
+      });
 }
 
 Status Session::check_view_config(const ViewConfig& config) const {
@@ -293,19 +312,16 @@ void Session::set_field_params(v1::FieldKind kind, std::vector<std::string> assi
           to_proto(*shadow_field(), loop_.applying_seq(), reply);
         } else {
           DDGI_ASSIGN_OR_RETURN(const std::optional<double> budget_ms, take_budget(assignments));
-          // A new budget starts from the session's own parameters; anything else (budget_ms 0
-          // included) from the field as it is.
-          IrradianceFieldParams params =
-              budget_ms.value_or(0.0) > 0.0 ? state_.scene->own_field_params() : field()->params();
-          DDGI_TRY(field_param_table().apply(params, assignments));
           if (budget_ms) {
-            DDGI_TRY(state_.scene->set_field_budget(params, state_.options.direct_mode, *budget_ms,
-                                                    assignments.empty(), *env_.budget, state_.id));
+            // The rule's choice within the new budget, the request's other parameters over it.
+            DDGI_TRY(
+                state_.scene->set_field_budget(*budget_ms, assignments, *env_.budget, state_.id));
           } else {
+            IrradianceFieldParams params = field()->params();
+            DDGI_TRY(field_param_table().apply(params, assignments));
             DDGI_TRY(field()->set_params(params));
-            state_.scene->end_budget();  // set by hand: no longer the budget's choice
+            state_.scene->end_budget();  // set by hand: no longer the rule's choice
           }
-          if (tools::sets_energy_params(assignments)) state_.scene->end_energy();
           to_proto(*state_.scene, loop_.applying_seq(), reply);
         }
         LOG_INFO << "field parameters changed session=" << state_.id

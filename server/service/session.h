@@ -163,6 +163,8 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
 
   // Commands' pieces (session.cpp), on the loop thread.
   Status load(const SceneRequest& request);
+  // Queues the adoption of the scene's finished calibration (called from the calibrator).
+  void adopt_calibration();
   Result<SessionScene*> require_scene();
   // FAILED_PRECONDITION when the session lacks the field of `kind`.
   Status require_field(v1::FieldKind kind) const;

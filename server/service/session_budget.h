@@ -1,45 +1,55 @@
-// The time budget as the service offers it: the `budget_ms` field parameter of CreateSession
-// and SetFieldParams (and ddgi-server --budget-ms for sessions that set none), taken out of the
-// field assignments before the parameter table sees them; the calibration settings and cache
-// every session of the server shares; and the choice as FieldParams.budget reports it. The
-// choosing itself is tools/field_budget.h. The energy calibration (tools/field_energy.h), which
-// shares the calibration machinery and cache, is configured and reported here too.
+// A session's configuration as the service offers it (tools/field_choice.h: the rule): the
+// `budget_ms` field parameter of CreateSession and SetFieldParams (ddgi-server --budget-ms for
+// sessions that set none), taken out of the field assignments before the parameter table sees
+// them; the calibration settings, cache and background calibrator every session of the server
+// shares; and what FieldParams.budget and FieldParams.calibration report.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/result.h"
 #include "ddgi/v1/render_service.pb.h"
+#include "service/calibrator.h"
 #include "tools/field_budget.h"
-#include "tools/field_energy.h"
+#include "tools/field_choice.h"
 
 namespace ddgi::service {
 
 inline constexpr const char* kBudgetParam = "budget_ms";
 inline constexpr const char* kBudgetParamHelp =
-    "GPU milliseconds per frame (field update + frame passes at the server's --budget-frame "
-    "size) within which the server picks the field configuration of lowest error it measured "
-    "for this scene on this GPU; (0, 1e6], 0 ends the budget. Refused when nothing fits.";
+    "GPU milliseconds per frame (every pass: shadow field, field update, frame, at the server's "
+    "--budget-frame size) within which the server picks the configuration of lowest error it "
+    "measured for this scene on this GPU; (0, 1e6], 0 returns to the server's --budget-ms. Never "
+    "refused: where nothing fits, the cheapest configuration streams and FieldParams.budget says "
+    "by how much it misses.";
 
-// What every session's budget shares (owned by the Server).
+// The share of the GPU's time a background calibration may take: a third, so that streams beside
+// it keep two thirds of their frame rate at worst while it runs.
+inline constexpr double kDefaultCalibrationShare = 1.0 / 3.0;
+
+// (0, 1]: refused by name otherwise.
+Status check_calibration_share(double share);
+
+// What every session's configuration shares (owned by the Server).
 struct BudgetService {
-  double default_ms = 0.0;  // sessions that set no budget_ms (--budget-ms); 0: none
+  double default_ms = tools::kDefaultBudgetMs;  // sessions that set no budget_ms (--budget-ms)
   tools::CalibrationOptions calibration;
-  // The energy calibration (tools/field_energy.h) of sessions that set none of its parameters,
-  // as ServerOptions::energy_calibration and energy_options say. Its calibrations share the
-  // cache (keys of their own).
-  bool energy = false;
-  tools::CalibrationOptions energy_calibration;
+  // Whether scenes are calibrated (--calibration); `off_reason` says why not.
+  bool calibrate = false;
+  std::string off_reason;
   tools::BudgetCache cache;
+  std::unique_ptr<Calibrator> calibrator;  // when calibrate
 };
 
 // Takes every "budget_ms=VALUE" out of `assignments` (the last counts): nothing when there is
-// none; 0 turns the budget off. A value that is not a number in [0, 1e6] is refused by name.
+// none; 0 returns to the server's default. A value that is not a number in [0, 1e6] is refused by
+// name.
 Result<std::optional<double>> take_budget(std::vector<std::string>& assignments);
 
-void to_proto(const tools::BudgetChoice& choice, v1::FieldBudget* out);
-void to_proto(const tools::EnergyChoice& choice, v1::FieldEnergy* out);
+void to_proto(const tools::BudgetChoice& choice, const std::string& scene_label,
+              v1::FieldBudget* out);
 
 }  // namespace ddgi::service

@@ -1,10 +1,15 @@
 // The scene a session has loaded: what it was loaded from (label, loader warnings, default
 // camera), its GI stack (the scene's GPU copy, the irradiance field, the shadow field), the
-// renderer whose kernels every view shares, and the session's lights. Replaced as a whole by
-// LoadScene; owned and used by the session's loop thread only.
+// renderer whose kernels every view shares, the session's lights, and its configuration: the
+// calibration of the scene (taken from the cache at load, or measured in the background while
+// the static default streams) and the rule's choice within the session's budget
+// (tools/field_choice.h). Replaced as a whole by LoadScene; owned and used by the session's loop
+// thread only.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,16 +42,16 @@ struct SessionOptions {
   // Shadow-field "name=value" over the grid fitted to the scene; the field exists only in the
   // shadow-field and AO direct modes.
   std::vector<std::string> shadow_assignments;
-  // The time budget (field parameter budget_ms): nothing takes the server's --budget-ms; 0 none.
+  // The time budget (field parameter budget_ms): nothing (or 0) takes the server's --budget-ms.
   std::optional<double> budget_ms;
 };
 
 class SessionScene {
  public:
   // Loads the scene (a library file, or an upload within the upload limit), builds its GI stack
-  // and runs the warm-up. With a time budget (options.budget_ms, else budget.default_ms) the
-  // field's configuration is the budget's choice (calibrated or cached). `session_id` is for
-  // the log.
+  // and runs the warm-up. The field starts with the rule's choice where the scene's calibration
+  // is cached, else with the static default (start_calibration() then measures it).
+  // `session_id` is for the log.
   static Result<std::unique_ptr<SessionScene>> load(
       vk::Context& context, const SceneRequest& request, const SessionOptions& options,
       const ServiceLimits& limits, BudgetService& budget, const std::string& session_id);
@@ -57,25 +62,27 @@ class SessionScene {
   GpuScene& gpu_scene() const { return gi_->scene(); }
   IrradianceField* field() const { return gi_->field(); }
   ShadowField* shadow_field() const { return gi_->shadow_field(); }
-  // The time budget's choice the field follows, if any.
-  const std::optional<tools::BudgetChoice>& budget() const { return budget_; }
-  // The field's parameters as the session set them: under a budget, those its choice was
-  // applied over (a new budget starts from them, not from the last choice).
-  const IrradianceFieldParams& own_field_params() const {
-    return budget_ ? budget_base_ : field()->params();
+
+  // The rule's choice the field follows, if any.
+  const std::optional<tools::BudgetChoice>& budget() const { return choice_; }
+  // Queues the scene's calibration where load() found none cached; `landed` runs on the
+  // calibrator's thread when it is done (the session then calls adopt_calibration on its loop).
+  void start_calibration(BudgetService& budget, std::function<void()> landed);
+  // Where the calibration finished: its choice becomes the field's (unless the field was set by
+  // hand since), or its failure is reported. Nothing while it runs.
+  Status adopt_calibration(const std::string& session_id);
+  // Sets the session's budget (0: the server's default) and, where the scene is calibrated,
+  // the field to the rule's choice within it with `hand_set` applied over it; before then, the
+  // choice waits for the calibration.
+  Status set_field_budget(double budget_ms, const std::vector<std::string>& hand_set,
+                          const BudgetService& budget, const std::string& session_id);
+  // Parameters set by hand: the field no longer follows the rule's choice.
+  void end_budget() {
+    choice_.reset();
+    hand_set_ = true;
   }
-  // Sets the field to the best configuration within `budget_ms` over `params` (own_field_params()
-  // with a request's other assignments); 0 ends the budget and sets `params`, or leaves the
-  // field as it is when the request set nothing else (`ends_budget_only`).
-  Status set_field_budget(const IrradianceFieldParams& params, DirectMode direct_mode,
-                          double budget_ms, bool ends_budget_only, BudgetService& budget,
-                          const std::string& session_id);
-  // Parameters set by hand: the field no longer follows a budget.
-  void end_budget() { budget_.reset(); }
-  // The energy calibration's choice made on load, if any (BudgetService::energy).
-  const std::optional<tools::EnergyChoice>& energy() const { return energy_; }
-  // One of its parameters set by hand: the field's energy settings are no longer its choice.
-  void end_energy() { energy_.reset(); }
+  // FieldParams.calibration.
+  void calibration_to_proto(v1::FieldCalibration* out) const;
   // The scene's and both fields' GPU bytes.
   uint64_t gpu_bytes() const;
 
@@ -95,9 +102,14 @@ class SessionScene {
  private:
   SessionScene() = default;
   Status upload_lights(const std::vector<Light>& lights);
-  Status choose_energy(vk::Context& context, const Scene& scene, const SessionOptions& options,
-                       BudgetService& budget, const std::string& session_id,
-                       const std::string& label, GiStackOptions& gi_options);
+  // Where the scene's calibration is cached: the choice applied to `gi_options` before the
+  // field exists. Else the calibration is left to start_calibration().
+  void take_cached_calibration(vk::Context& context, const Scene& scene,
+                               const SessionOptions& options, BudgetService& budget,
+                               GiStackOptions& gi_options);
+  // The field set to the rule's choice within budget_ms_ over the session's own parameters, with
+  // `hand_set` over it.
+  Status follow_choice(const std::vector<std::string>& hand_set, const std::string& session_id);
 
   vk::Context* context_ = nullptr;
   std::string label_;
@@ -106,9 +118,28 @@ class SessionScene {
   std::unique_ptr<GiStack> gi_;
   std::unique_ptr<Renderer> renderer_;  // after gi_: it points at its scene and fields
   LightSet lights_;
-  std::optional<tools::BudgetChoice> budget_;
-  IrradianceFieldParams budget_base_;  // what budget_ was chosen over
-  std::optional<tools::EnergyChoice> energy_;
+  uint32_t warmup_updates_ = 0;
+
+  // The configuration. base_: the options the session asked for (the static default with its
+  // own assignments), which the calibration measured over; fixed_: those assignments, which the
+  // candidates keep.
+  GiStackOptions base_;
+  std::vector<std::string> fixed_;
+  double budget_ms_ = 0.0;
+  std::string calibration_key_;
+  std::shared_ptr<const tools::Calibration> calibration_;
+  bool calibration_from_cache_ = false;
+  std::optional<tools::BudgetChoice> choice_;
+  bool hand_set_ = false;        // parameters set by hand since the last choice
+  std::string calibration_off_;  // why the scene is not calibrated (empty: it is)
+  std::string calibration_error_;
+  // While the calibration runs: the job, this scene's interest in it, and the CPU scene it
+  // measures (a copy: the session's lights and instances change its own).
+  std::shared_ptr<CalibrationJob> job_;
+  std::shared_ptr<void> wants_job_;
+  std::shared_ptr<const Scene> scene_to_calibrate_;
+  std::chrono::steady_clock::time_point loaded_at_;
+  double switched_after_s_ = 0.0;
 };
 
 }  // namespace ddgi::service

@@ -22,16 +22,21 @@ json to_json(const Calibration& c) {
   for (const CalibratedCandidate& p : c.candidates) {
     candidates.push_back({{"name", p.candidate.name},
                           {"assignments", p.candidate.assignments},
+                          {"shadow_ms", p.shadow_ms},
                           {"field_ms", p.field_ms},
                           {"frame_ms", p.frame_ms},
+                          {"timed_frames", p.timed_frames},
                           {"flip", p.flip},
+                          {"flip_noise", p.flip_noise},
                           {"mean_ratio", p.mean_ratio},
-                          {"indirect_ratio", p.indirect_ratio}});
+                          {"mean_ratio_noise", p.mean_ratio_noise}});
   }
   return {{"device", c.device},
           {"width", c.width},
           {"height", c.height},
           {"seconds", c.seconds},
+          {"reference_mean", c.reference_mean},
+          {"reference_noise", c.reference_noise},
           {"candidates", candidates}};
 }
 
@@ -42,15 +47,20 @@ Calibration from_json(const json& doc) {
   c.width = doc.at("width").get<uint32_t>();
   c.height = doc.at("height").get<uint32_t>();
   c.seconds = doc.at("seconds").get<double>();
+  c.reference_mean = doc.at("reference_mean").get<double>();
+  c.reference_noise = doc.at("reference_noise").get<double>();
   for (const json& p : doc.at("candidates")) {
     CalibratedCandidate point;
     point.candidate.name = p.at("name").get<std::string>();
     point.candidate.assignments = p.at("assignments").get<std::vector<std::string>>();
+    point.shadow_ms = p.at("shadow_ms").get<double>();
     point.field_ms = p.at("field_ms").get<double>();
     point.frame_ms = p.at("frame_ms").get<double>();
+    point.timed_frames = p.at("timed_frames").get<uint32_t>();
     point.flip = p.at("flip").get<double>();
+    point.flip_noise = p.at("flip_noise").get<double>();
     point.mean_ratio = p.at("mean_ratio").get<double>();
-    point.indirect_ratio = p.at("indirect_ratio").get<double>();
+    point.mean_ratio_noise = p.at("mean_ratio_noise").get<double>();
     c.candidates.push_back(std::move(point));
   }
   if (c.candidates.empty()) throw std::runtime_error("no candidates");
@@ -114,27 +124,30 @@ void BudgetCache::write_file(const std::string& key, const Calibration& calibrat
   }
 }
 
-Result<Calibration> BudgetCache::get_or_measure(const std::string& key, const Measure& measure,
-                                                bool& from_cache) {
-  {
-    std::lock_guard lock(mutex_);
-    if (const auto it = entries_.find(key); it != entries_.end()) {
-      from_cache = true;
-      return it->second;
-    }
-    if (!dir_.empty()) {
-      if (std::optional<Calibration> kept = read_file(key)) {
-        entries_[key] = *kept;
-        from_cache = true;
-        return *kept;
-      }
-    }
-  }
-  // Measured outside the lock: another scene's session need not wait for this one.
-  DDGI_ASSIGN_OR_RETURN(Calibration calibration, measure());
+std::optional<Calibration> BudgetCache::find(const std::string& key) {
+  std::lock_guard lock(mutex_);
+  if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
+  if (dir_.empty()) return std::nullopt;
+  std::optional<Calibration> kept = read_file(key);
+  if (kept) entries_[key] = *kept;
+  return kept;
+}
+
+void BudgetCache::put(const std::string& key, const Calibration& calibration) {
   std::lock_guard lock(mutex_);
   entries_[key] = calibration;
   if (!dir_.empty()) write_file(key, calibration);
+}
+
+Result<Calibration> BudgetCache::get_or_measure(const std::string& key, const Measure& measure,
+                                                bool& from_cache) {
+  if (std::optional<Calibration> kept = find(key)) {
+    from_cache = true;
+    return *kept;
+  }
+  // Measured outside the lock: another scene's session need not wait for this one.
+  DDGI_ASSIGN_OR_RETURN(Calibration calibration, measure());
+  put(key, calibration);
   from_cache = false;
   return calibration;
 }

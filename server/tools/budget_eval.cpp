@@ -6,7 +6,7 @@
 
 #include "gi/gi_stack.h"
 #include "gpu_scene/camera_fit.h"
-#include "tools/field_budget.h"
+#include "tools/field_choice.h"
 
 namespace ddgi::tools {
 namespace {
@@ -27,26 +27,26 @@ std::optional<size_t> best_measured(const std::vector<ConfigPoint>& measured, do
   return best;
 }
 
-std::string row(const std::string& stem, double budget_ms, const Calibration& calibration,
-                const Result<size_t>& chosen, const std::vector<ConfigPoint>& measured) {
+std::string row(const std::string& stem, const BudgetChoice& choice,
+                const std::vector<ConfigPoint>& measured) {
   char text[512];
-  const std::optional<size_t> best = best_measured(measured, budget_ms);
+  const std::optional<size_t> best = best_measured(measured, choice.budget_ms);
   const std::string best_text = best ? measured[*best].name + " (" +
                                            std::to_string(measured[*best].full.flip).substr(0, 6) +
                                            ")"
                                      : "none fits";
-  if (!chosen.ok()) {
-    std::snprintf(text, sizeof text, "| %s | %g | refused: %s | | | | | %s | |", stem.c_str(),
-                  budget_ms, chosen.error().message.c_str(), best_text.c_str());
-    return text;
-  }
-  const CalibratedCandidate& c = calibration.candidates[*chosen];
-  const ConfigPoint& m = measured[*chosen];
+  const CalibratedCandidate& c = choice.chosen;
+  const ConfigPoint& m = measured[choice.index];
+  const std::string chosen =
+      c.candidate.name + (choice.budget_met ? ""
+                                            : ", the cheapest: budget not met by " +
+                                                  std::to_string(choice.over_ms) + " ms");
   const std::string flip_ratio =
       best ? std::to_string(m.full.flip / measured[*best].full.flip).substr(0, 5) : "-";
   std::snprintf(text, sizeof text, "| %s | %g | %s | %.3f | %.3f | %.2f | %.4f | %s | %s |",
-                stem.c_str(), budget_ms, c.candidate.name.c_str(), c.cost_ms(), m.total_ms(),
-                m.total_ms() / budget_ms, m.full.flip, best_text.c_str(), flip_ratio.c_str());
+                stem.c_str(), choice.budget_ms, chosen.c_str(), c.cost_ms(), m.total_ms(),
+                m.total_ms() / choice.budget_ms, m.full.flip, best_text.c_str(),
+                flip_ratio.c_str());
   return text;
 }
 
@@ -80,13 +80,14 @@ Result<std::vector<std::string>> budget_rows(vk::Context& context, const EvalJob
       calibrate(context, scene, default_camera(scene), base, candidates, options));
   std::fprintf(stderr, "%s: calibrated in %.1f s\n", stem.c_str(), calibration.seconds);
   for (const CalibratedCandidate& c : calibration.candidates) {
-    std::fprintf(stderr, "  %s: %.3f ms, FLIP %.4f\n", c.candidate.name.c_str(), c.cost_ms(),
-                 c.flip);
+    std::fprintf(stderr, "  %s: %.3f ms, FLIP %.4f +- %.4f, mean/ref %.3f +- %.3f\n",
+                 c.candidate.name.c_str(), c.cost_ms(), c.flip, c.flip_noise, c.mean_ratio,
+                 c.mean_ratio_noise);
   }
   std::vector<std::string> rows;
   for (const double budget_ms : job.budgets) {
-    rows.push_back(
-        row(stem, budget_ms, calibration, choose_within_budget(calibration, budget_ms), measured));
+    DDGI_ASSIGN_OR_RETURN(const BudgetChoice choice, choose_configuration(calibration, budget_ms));
+    rows.push_back(row(stem, choice, measured));
   }
   return rows;
 }

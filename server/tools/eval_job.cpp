@@ -27,15 +27,6 @@ std::vector<float> to_unit_rgb(const std::vector<uint8_t>& rgba) {
   return rgb;
 }
 
-// Mean Rec. 709 luminance of linear RGBA radiance.
-double mean_luminance(const std::vector<float>& rgba) {
-  double sum = 0.0;
-  for (size_t i = 0; i < rgba.size(); i += 4) {
-    sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
-  }
-  return rgba.empty() ? 0.0 : sum / double(rgba.size() / 4);
-}
-
 // A configuration's shadow field parameters are named with this in front ("shadow.texels=8").
 constexpr std::string_view kShadowPrefix = "shadow.";
 
@@ -84,6 +75,14 @@ Status check_frame_downscale(const EvalJob& job, const Config& config) {
 }
 
 }  // namespace
+
+double mean_luminance(const std::vector<float>& rgba) {
+  double sum = 0.0;
+  for (size_t i = 0; i < rgba.size(); i += 4) {
+    sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
+  }
+  return rgba.empty() ? 0.0 : sum / double(rgba.size() / 4);
+}
 
 double mean_ratio(const std::vector<float>& test, const std::vector<float>& reference) {
   const double ref = mean_luminance(reference);
@@ -202,10 +201,12 @@ Result<EvalJob> parse_job(const Flags& flags) {
   if (!job.budgets.empty() && flags.has("configs")) {
     return invalid_argument("--budgets measures the budget's own candidates: drop --configs");
   }
-  job.energy = flags.has("energy");
-  if (job.energy && (!job.budgets.empty() || !job.dynamic.empty() || !job.camera_path.empty())) {
+  job.session_defaults = flags.has("session-defaults");
+  if (job.session_defaults &&
+      (!job.budgets.empty() || !job.dynamic.empty() || !job.camera_path.empty())) {
     return invalid_argument(
-        "--energy applies to the table's configurations: not with --budgets, --dynamic or --path");
+        "--session-defaults applies to the table's configurations: not with --budgets, --dynamic "
+        "or --path");
   }
   for (const Config& c : job.configs) DDGI_TRY(check_frame_downscale(job, c));
   return job;

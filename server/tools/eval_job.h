@@ -54,12 +54,12 @@ struct EvalJob {
   uint32_t pt_max_spp = 64;
   std::string dynamic;  // empty: no --dynamic
   int64_t response_frames = 120;
-  int64_t response_static = 0;  // --dynamic: frames before the change
-  std::string camera_path;      // empty: no --path
-  double path_rate = 30.0;      // field updates (and frames) per second of the path
-  double path_every = 10.0;     // seconds of the path between scored frames
-  std::vector<double> budgets;  // --budgets: ms per frame; empty: none
-  bool energy = false;          // --energy: the energy calibration's choice per configuration
+  int64_t response_static = 0;    // --dynamic: frames before the change
+  std::string camera_path;        // empty: no --path
+  double path_rate = 30.0;        // field updates (and frames) per second of the path
+  double path_every = 10.0;       // seconds of the path between scored frames
+  std::vector<double> budgets;    // --budgets: ms per frame; empty: none
+  bool session_defaults = false;  // --session-defaults: a session's choice per configuration
 };
 
 Result<EvalJob> parse_job(const Flags& flags);
@@ -79,6 +79,9 @@ Result<std::unique_ptr<Renderer>> make_renderer(vk::Context& context, GiStack& g
 
 // Exposure that maps the log-average luminance of `radiance` (RGBA) to 0.18.
 float auto_exposure(const std::vector<float>& radiance);
+
+// The mean Rec. 709 luminance of linear RGBA radiance.
+double mean_luminance(const std::vector<float>& rgba);
 
 // The mean Rec. 709 luminance of linear RGBA `test` over `reference`'s ("mean/ref": 1 when a
 // frame neither loses nor adds light); 0 for a black reference.

@@ -24,12 +24,12 @@
 #include "scene/gltf_loader.h"
 #include "tools/budget_eval.h"
 #include "tools/dynamic_response.h"
-#include "tools/energy_eval.h"
 #include "tools/eval_job.h"
 #include "tools/image_upscale.h"
 #include "tools/pareto.h"
 #include "tools/path_eval.h"
 #include "tools/reference_render.h"
+#include "tools/session_defaults_eval.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
 
@@ -108,12 +108,10 @@ readbacks not included).
                         separated), its choice is printed beside the measurements: the
                         chosen configuration's measured ms over the budget and its FLIP
                         over the best measured configuration within the budget
-  --energy              every configuration that sets none of probe_bounces,
-                        self_shadow_bias, irradiance_gamma, pixel_paths and
-                        pixel_path_vertices gets what the energy
-                        calibration chooses for the scene, as a ddgi-server session does
-                        (--energy-calibration); the row's name says what (not with --budgets,
-                        --dynamic or --path)
+  --session-defaults    every configuration gets what a ddgi-server session chooses over it
+                        for the scene at the server's default budget (4 ms at --width x
+                        --height): the calibrated choice of lowest error that fits; the
+                        row's name says what (not with --budgets, --dynamic or --path)
   --backend B           auto | query | pipeline                         [auto]
 )";
 
@@ -464,7 +462,7 @@ Status run(int argc, char** argv) {
                    {"width", "height", "spp", "warmup", "frames", "configs", "field", "out-dir",
                     "backend", "pareto", "pt-max-spp", "dynamic", "response-frames",
                     "response-static", "path", "path-rate", "path-every", "budgets"},
-                   {"help", "energy"}));
+                   {"help", "session-defaults"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -498,9 +496,9 @@ Status run(int argc, char** argv) {
     if (!job.budgets.empty()) {
       DDGI_ASSIGN_OR_RETURN(configs, tools::budget_configs(*context, job, scene));
     }
-    if (job.energy) {
-      DDGI_ASSIGN_OR_RETURN(
-          configs, tools::energy_configs(*context, job, scene, default_camera(scene), configs));
+    if (job.session_defaults) {
+      DDGI_ASSIGN_OR_RETURN(configs, tools::session_default_configs(
+                                         *context, job, scene, default_camera(scene), configs));
     }
     for (const Config& config : configs) {
       DDGI_ASSIGN_OR_RETURN(tools::ConfigPoint point,

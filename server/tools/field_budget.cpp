@@ -1,4 +1,4 @@
-// The time budget's candidates, calibration, choice and cache (tools/field_budget.h).
+// A session's candidate configurations, their calibration and its cache key (tools/field_budget.h).
 #include "tools/field_budget.h"
 
 #include <algorithm>
@@ -42,6 +42,39 @@ bool coarser_grid_exists(const IrradianceFieldParams& base) {
          glm::any(glm::greaterThanEqual(base.counts, glm::ivec3(3)));
 }
 
+// One axis's value: its name in a candidate's name ("" for the base's) and assignments.
+struct Axis {
+  std::string name;
+  std::vector<std::string> assignments;
+};
+
+// A candidate of one value per axis: names joined by ", " ("static default" for none).
+BudgetCandidate combine(std::initializer_list<Axis> values) {
+  BudgetCandidate c;
+  for (const Axis& v : values) {
+    if (!v.name.empty()) c.name += (c.name.empty() ? "" : ", ") + v.name;
+    c.assignments.insert(c.assignments.end(), v.assignments.begin(), v.assignments.end());
+  }
+  if (c.name.empty()) c.name = "static default";
+  return c;
+}
+
+// Emitter light sampled or carried by the field, whichever the base does not do; a base that
+// takes several samples also gets one: unbiased as well, at half the shadow rays per pixel and
+// probe-ray hit. Only the base's where the scene has no emissive surface.
+std::vector<Axis> emitter_axis(const Scene& scene, const IrradianceFieldParams& base) {
+  std::vector<Axis> axis = {{"", {}}};
+  if (!scene.has_emissive_surfaces()) return axis;
+  if (base.emitter_samples == 0) {
+    axis.push_back({"emitters " + std::to_string(kSceneEmitterSamples),
+                    {"emitter_samples=" + std::to_string(kSceneEmitterSamples)}});
+    return axis;
+  }
+  if (base.emitter_samples > 1) axis.push_back({"emitters 1", {"emitter_samples=1"}});
+  axis.push_back({"emitters via field", {"emitter_samples=0"}});
+  return axis;
+}
+
 // Untimed frames before a candidate's timed ones: the first candidate follows the reference's
 // readback and a clock that may have fallen (kClockRampUp); the later ones follow a warm-up
 // and a small image's scoring, a GPU idle for far less than the 1.4 s after which the clock
@@ -50,62 +83,92 @@ std::chrono::milliseconds untimed_before(size_t candidate_index) {
   return candidate_index == 0 ? kClockRampUp : std::chrono::milliseconds(100);
 }
 
-// The medians of `frames` timed frames of the budget's size, one field update each, after
-// untimed ones for `untimed` (clocks up after the CPU-side work before).
-Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings, uint32_t frames,
-                   std::chrono::milliseconds untimed, CalibratedCandidate& out) {
+// The medians of the timed frames of the budget's size, one field update each (with the shadow
+// field's, where the session has one), after untimed ones for `untimed` (clocks up after the
+// CPU-side work before). A first frame over `options.slow_frame_ms` is the only one.
+Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings,
+                   const CalibrationOptions& options, std::chrono::milliseconds untimed,
+                   CalibratedCandidate& out) {
   settings.read_radiance = false;
   DDGI_TRY(render_for(renderer, settings, untimed));
   PassTable table;
-  for (uint32_t f = 0; f < frames; ++f) {
+  for (uint32_t f = 0; f < options.timed_frames; ++f) {
     DDGI_ASSIGN_OR_RETURN(const auto update, gi.frame_update(settings.direct_mode, {}));
     DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings, update));
     table.add(frame.pass_times);
+    out.timed_frames = f + 1;
+    const double ms = vk::group_milliseconds(frame.pass_times, vk::PassGroup::kShadowField) +
+                      vk::group_milliseconds(frame.pass_times, vk::PassGroup::kIrradianceField) +
+                      vk::group_milliseconds(frame.pass_times, vk::PassGroup::kFrame);
+    if (f == 0 && ms > options.slow_frame_ms) break;
   }
+  out.shadow_ms = table.group_median(vk::PassGroup::kShadowField);
   out.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
   out.frame_ms = table.group_median(vk::PassGroup::kFrame);
   return ok_status();
 }
 
-// One candidate: the field set to it and warmed up, timed (or its injected cost), then a frame
+// The mean of `values` and its standard error (sample deviation / sqrt(n)).
+std::pair<double, double> mean_and_error(const std::vector<double>& values) {
+  double mean = 0.0;
+  for (const double v : values) mean += v;
+  mean /= double(values.size());
+  double squares = 0.0;
+  for (const double v : values) squares += (v - mean) * (v - mean);
+  const double n = double(values.size());
+  return {mean, n > 1 ? std::sqrt(squares / (n - 1) / n) : 0.0};
+}
+
+// Scores options.scored_frames frames of the scored size, one more field update before each
+// after the first: their mean errors and the noise of those means.
+Status score_frames(GiStack& gi, Renderer& renderer, FrameSettings settings,
+                    const ReferencePair& reference, const CalibrationOptions& options,
+                    CalibratedCandidate& out) {
+  const PathTraceSettings& view = reference.settings;
+  settings.width = view.width;
+  settings.height = view.height;
+  settings.read_radiance = true;
+  std::vector<double> flips, ratios;
+  for (uint32_t f = 0; f < options.scored_frames; ++f) {
+    if (f > 0) DDGI_TRY(gi.update(1));
+    DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings));
+    DDGI_ASSIGN_OR_RETURN(const ImageScores scores,
+                          score(reference.full.ldr, reference.full.radiance, frame.ldr,
+                                frame.radiance, view.width, view.height));
+    flips.push_back(scores.flip);
+    ratios.push_back(scores.mean_ratio);
+  }
+  std::tie(out.flip, out.flip_noise) = mean_and_error(flips);
+  double frames_noise = 0.0;
+  std::tie(out.mean_ratio, frames_noise) = mean_and_error(ratios);
+  out.mean_ratio_noise = std::hypot(frames_noise, out.mean_ratio * reference.mean_noise);
+  return ok_status();
+}
+
+// One candidate: the field set to it and warmed up, timed (or its injected cost), then frames
 // of the scored size compared with the reference.
 Result<CalibratedCandidate> measure(GiStack& gi, Renderer& renderer, const GiStackOptions& base,
                                     const BudgetCandidate& candidate, size_t index,
                                     const ReferencePair& reference,
                                     const CalibrationOptions& options) {
-  const PathTraceSettings& view = reference.settings;
   IrradianceFieldParams params = base.field;
   DDGI_TRY(field_param_table().apply(params, candidate.assignments));
   DDGI_TRY(gi.field()->set_params(params));
-  gi.track(view.camera.position);  // a tracking field is placed around the view, as in a session
+  gi.track(reference.settings.camera.position);  // a tracking field is placed around the view
   DDGI_TRY(gi.warm_up(options.warmup_updates));
   CalibratedCandidate out{candidate};
   FrameSettings settings;
-  settings.camera = view.camera;
+  settings.camera = reference.settings.camera;
   settings.direct_mode = base.direct_mode;
   settings.exposure = reference.exposure;
   if (options.injected_ms.empty()) {
     settings.width = options.width;
     settings.height = options.height;
-    DDGI_TRY(time_frames(gi, renderer, settings, options.timed_frames, untimed_before(index), out));
+    DDGI_TRY(time_frames(gi, renderer, settings, options, untimed_before(index), out));
   } else {
-    out.field_ms = 0.0;
     out.frame_ms = options.injected_ms[index];
   }
-  settings.width = view.width;
-  settings.height = view.height;
-  settings.read_radiance = true;
-  DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings));
-  DDGI_ASSIGN_OR_RETURN(const ImageScores scores,
-                        score(reference.full.ldr, reference.full.radiance, frame.ldr,
-                              frame.radiance, view.width, view.height));
-  out.flip = scores.flip;
-  out.mean_ratio = scores.mean_ratio;
-  if (options.score_indirect) {
-    settings.view = View::kIndirect;
-    DDGI_ASSIGN_OR_RETURN(const FrameResult indirect, renderer.render(settings));
-    out.indirect_ratio = mean_ratio(indirect.radiance, reference.second.radiance);
-  }
+  DDGI_TRY(score_frames(gi, renderer, settings, reference, options, out));
   return out;
 }
 
@@ -177,30 +240,57 @@ void score_size(const CalibrationOptions& options, uint32_t& width, uint32_t& he
 }  // namespace
 
 std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
-                                               const IrradianceFieldParams& base) {
-  std::vector<std::pair<std::string, std::vector<std::string>>> grids = {{"", {}}};
-  if (coarser_grid_exists(base)) grids.push_back({", coarse", coarse_grid(base)});
-  // Emitter light sampled or carried by the field, whichever the base does not do; a base that
-  // takes several samples also gets one: unbiased as well, at half the shadow rays per pixel and
-  // probe-ray hit (per pixel: an estimated half of staircase's 1080p frame).
-  std::vector<std::pair<std::string, std::vector<std::string>>> emitters = {{"", {}}};
-  if (scene.has_emissive_surfaces() && base.emitter_samples == 0) {
-    emitters.push_back({", emitters " + std::to_string(kSceneEmitterSamples),
-                        {"emitter_samples=" + std::to_string(kSceneEmitterSamples)}});
-  } else if (scene.has_emissive_surfaces()) {
-    if (base.emitter_samples > 1) emitters.push_back({", emitters 1", {"emitter_samples=1"}});
-    emitters.push_back({", emitters via field", {"emitter_samples=0"}});
-  }
-  std::vector<BudgetCandidate> candidates;
-  for (const uint32_t rays : {32u, 64u, 128u, 256u}) {
-    for (const auto& [grid_name, grid] : grids) {
-      for (const auto& [emitter_name, emitter] : emitters) {
-        BudgetCandidate c{"rays " + std::to_string(rays) + grid_name + emitter_name,
-                          {"rays_per_probe=" + std::to_string(rays)}};
-        c.assignments.insert(c.assignments.end(), grid.begin(), grid.end());
-        c.assignments.insert(c.assignments.end(), emitter.begin(), emitter.end());
-        candidates.push_back(std::move(c));
+                                               const IrradianceFieldParams& base,
+                                               const std::vector<std::string>& fixed) {
+  const auto is_fixed = [&](std::initializer_list<const char*> names) {
+    for (const std::string& f : fixed) {
+      const std::string name = f.substr(0, f.find('='));
+      for (const char* n : names) {
+        if (name == n) return true;
       }
+    }
+    return false;
+  };
+  std::vector<Axis> gathering = {{"", {}}};
+  if (!is_fixed({"probe_bounces", "self_shadow_bias", "irradiance_gamma"})) {
+    gathering.push_back({"bias 0.5", {"self_shadow_bias=0.5"}});
+    gathering.push_back({"paths 1", {"probe_bounces=1"}});
+    gathering.push_back({"paths 1, bias 0.5", {"probe_bounces=1", "self_shadow_bias=0.5"}});
+    gathering.push_back({"paths 1, gamma 1", {"probe_bounces=1", "irradiance_gamma=1"}});
+  }
+  std::vector<Axis> rays = {{"", {}}};
+  if (!is_fixed({"rays_per_probe"})) {
+    for (const uint32_t r : {32u, 64u, 256u}) {
+      if (r != base.rays_per_probe) {
+        rays.push_back({"rays " + std::to_string(r), {"rays_per_probe=" + std::to_string(r)}});
+      }
+    }
+  }
+  const std::vector<Axis> emitters =
+      is_fixed({"emitter_samples"}) ? std::vector<Axis>{{"", {}}} : emitter_axis(scene, base);
+  std::vector<BudgetCandidate> candidates;
+  for (size_t g = 0; g < gathering.size(); ++g) {
+    // Emitter sampling only beside the static and one-bounce gathering: the others change
+    // what the field keeps, not what a pixel samples.
+    const size_t emitter_count = (g == 0 || gathering[g].name == "paths 1") ? emitters.size() : 1;
+    for (const Axis& r : rays) {
+      for (size_t e = 0; e < emitter_count; ++e) {
+        candidates.push_back(combine({gathering[g], r, emitters[e]}));
+      }
+    }
+  }
+  if (coarser_grid_exists(base) && !is_fixed({"counts", "spacing", "origin"})) {
+    const Axis coarse{"coarse", coarse_grid(base)};
+    const Axis few_rays = rays.size() > 1 ? rays[1] : rays[0];  // 32 rays unless fixed
+    for (const Axis& e : emitters) candidates.push_back(combine({few_rays, coarse, e}));
+  }
+  if (!is_fixed({"pixel_paths", "pixel_path_vertices"})) {
+    for (const uint32_t paths : kPixelPathCounts) {
+      const std::string count = std::to_string(paths),
+                        vertices = std::to_string(kPixelPathVertices);
+      candidates.push_back(
+          combine({{"pixel paths " + count + "x" + vertices,
+                    {"pixel_paths=" + count, "pixel_path_vertices=" + vertices}}}));
     }
   }
   return candidates;
@@ -220,6 +310,12 @@ Status validate(const CalibrationOptions& o) {
   }
   if (!in(o.timed_frames, 1, 1000)) {
     return invalid_argument("calibration timed_frames must be in [1, 1000]");
+  }
+  if (!in(o.scored_frames, 2, 16)) {
+    return invalid_argument("calibration scored_frames must be in [2, 16]");
+  }
+  if (!(o.slow_frame_ms >= 1.0 && o.slow_frame_ms <= kMaxBudgetMs)) {
+    return invalid_argument("calibration slow_frame_ms must be in [1, 1e6]");
   }
   return ok_status();
 }
@@ -243,24 +339,30 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
   score_size(options, scored.width, scored.height);
   scored.camera = camera;
   scored.full_spp = options.reference_spp;
-  scored.second_spp = options.score_indirect ? options.reference_spp : 0;
+  scored.second_spp = 0;
   scored.exposure = auto_exposure;
+  scored.estimate_mean_noise = true;
   DDGI_ASSIGN_OR_RETURN(const ReferencePair reference,
                         reference_pair(context, gi->scene(), scored));
   Calibration calibration;
   calibration.device = context.caps().device_name;
   calibration.width = options.width;
   calibration.height = options.height;
+  calibration.reference_mean = mean_luminance(reference.full.radiance);
+  calibration.reference_noise = reference.mean_noise;
   for (size_t i = 0; i < candidates.size(); ++i) {
+    if (options.hooks.cancelled && options.hooks.cancelled()) {
+      return unavailable("the calibration was cancelled: nobody waits for it");
+    }
     DDGI_ASSIGN_OR_RETURN(CalibratedCandidate point,
                           measure(*gi, *renderer, base, candidates[i], i, reference, options));
     LOG_INFO << options.purpose << " calibration " << i + 1 << "/" << candidates.size() << " '"
-             << point.candidate.name << "': " << point.cost_ms() << " ms (field " << point.field_ms
-             << " + frame " << point.frame_ms << "), FLIP " << point.flip << ", mean/ref "
-             << point.mean_ratio
-             << (options.score_indirect ? ", indirect " + std::to_string(point.indirect_ratio)
-                                        : "");
+             << point.candidate.name << "': " << point.cost_ms() << " ms (shadow "
+             << point.shadow_ms << " + field " << point.field_ms << " + frame " << point.frame_ms
+             << "), FLIP " << point.flip << " +- " << point.flip_noise << ", mean/ref "
+             << point.mean_ratio << " +- " << point.mean_ratio_noise;
     calibration.candidates.push_back(std::move(point));
+    if (options.hooks.progress) options.hooks.progress(i + 1, candidates.size());
   }
   calibration.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -275,67 +377,24 @@ Status check_budget_ms(double budget_ms) {
   return invalid_argument(text.str());
 }
 
-Result<size_t> choose_within_budget(const Calibration& calibration, double budget_ms) {
-  DDGI_TRY(check_budget_ms(budget_ms));
-  if (calibration.candidates.empty()) return invalid_argument("the calibration has no candidates");
-  std::optional<size_t> best;
-  size_t cheapest = 0;
-  for (size_t i = 0; i < calibration.candidates.size(); ++i) {
-    const CalibratedCandidate& c = calibration.candidates[i];
-    if (c.cost_ms() < calibration.candidates[cheapest].cost_ms()) cheapest = i;
-    if (c.cost_ms() > budget_ms) continue;
-    const CalibratedCandidate* b = best ? &calibration.candidates[*best] : nullptr;
-    if (!b || c.flip < b->flip || (c.flip == b->flip && c.cost_ms() < b->cost_ms())) best = i;
-  }
-  if (best) return *best;
-  const CalibratedCandidate& c = calibration.candidates[cheapest];
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "budget_ms %g cannot be met: the cheapest configuration measured for this scene "
-                "on %s at %ux%u, '%s', costs %.3f ms per frame (field %.3f + frame %.3f)",
-                budget_ms, calibration.device.c_str(), calibration.width, calibration.height,
-                c.candidate.name.c_str(), c.cost_ms(), c.field_ms, c.frame_ms);
-  return failed_precondition(text);
-}
-
 std::string calibration_key(const vk::Context& context, const Scene& scene,
-                            const GiStackOptions& base, const CalibrationOptions& options) {
+                            const GiStackOptions& base, const CalibrationOptions& options,
+                            const std::vector<std::string>& fixed) {
   std::ostringstream key;
+  key << kCalibrationFormat << "|";
   key << std::hex << scene_hash(scene) << std::dec << "|" << context.caps().device_name << "|"
       << context.caps().driver_name << "|" << options.width << "x" << options.height << "|"
       << options.reference_spp << "|" << options.warmup_updates << "|" << options.timed_frames
-      << "|" << options.score_indirect << "|" << static_cast<int>(base.direct_mode) << "|"
-      << static_cast<int>(base.backend) << "|" << params_text(field_param_table(), base.field);
+      << "|" << options.scored_frames << "|" << options.slow_frame_ms << "|"
+      << static_cast<int>(base.direct_mode) << "|" << static_cast<int>(base.backend) << "|"
+      << params_text(field_param_table(), base.field);
   // The shadow field's parameters count only where there is one.
   if (uses_shadow_field(shadow_field_mode(base.direct_mode, &base.field))) {
     key << "|" << params_text(shadow_param_table(), base.shadow);
   }
+  for (const std::string& f : fixed) key << "|fixed " << f;
   for (const double ms : options.injected_ms) key << "|" << ms;
   return key.str();
-}
-
-Result<BudgetChoice> apply_budget(vk::Context& context, const Scene& scene, const Camera& camera,
-                                  GiStackOptions& base, double budget_ms,
-                                  const CalibrationOptions& options, BudgetCache& cache) {
-  DDGI_TRY(check_budget_ms(budget_ms));  // before seconds of calibration, not after
-  BudgetChoice choice;
-  choice.budget_ms = budget_ms;
-  const std::vector<BudgetCandidate> candidates = budget_candidates(scene, base.field);
-  DDGI_ASSIGN_OR_RETURN(
-      const Calibration calibration,
-      cache.get_or_measure(
-          calibration_key(context, scene, base, options),
-          [&] { return calibrate(context, scene, camera, base, candidates, options); },
-          choice.from_cache));
-  DDGI_ASSIGN_OR_RETURN(const size_t index, choose_within_budget(calibration, budget_ms));
-  choice.chosen = calibration.candidates[index];
-  choice.device = calibration.device;
-  choice.width = calibration.width;
-  choice.height = calibration.height;
-  choice.candidates = calibration.candidates.size();
-  choice.calibration_seconds = calibration.seconds;
-  DDGI_TRY(field_param_table().apply(base.field, choice.chosen.candidate.assignments));
-  return choice;
 }
 
 }  // namespace ddgi::tools

@@ -1,12 +1,16 @@
-// The time budget (issue 14, "a time budget"): for a loaded scene and a frame size, the field
-// configuration of lowest error whose cost fits a budget of GPU milliseconds per frame. The
-// choice comes from measurements on this GPU for this scene, never from a table: a calibration
-// warms each candidate up over the scene's own GPU copy, times its field update and frame
-// passes at the budget's frame size, and scores a smaller frame against a path-traced reference
-// (FLIP, the Pareto harness's error axis). The candidates come from scene analysis: only what
-// the scene has is varied (emitter sampling only where emissive surfaces are). The service runs
-// it on load when a session asks for a budget (budget_ms) and caches the result per scene,
-// device, frame size and base parameters (BudgetCache).
+// A session's configuration (issue 45, "one rule for accuracy and time"): for a loaded scene and
+// a frame size, the field configuration of lowest error whose cost fits a budget of GPU
+// milliseconds per frame (the rule itself: tools/field_choice.h). The choice comes from
+// measurements on this GPU for this scene, never from a table: a calibration warms each candidate
+// up over the scene's own GPU copy, times every pass of its frame (shadow field, irradiance field,
+// frame) at the budget's frame size, and scores a smaller frame against a path-traced reference
+// (FLIP and the mean light, each with its noise). The candidates come from scene analysis and
+// cover everything a session may trade: rays per probe, the grid, emitter sampling (only where
+// emissive surfaces are), how a probe ray's light is gathered (traced bounces, self-shadowing
+// bias, the blend's encoding: what decides whether the field keeps a scene's light) and paths per
+// pixel. The service calibrates in the background after a session starts (service/calibrator.h)
+// and keeps the result per scene, device, driver, frame size and base parameters (BudgetCache,
+// on disk by default).
 #pragma once
 
 #include <cstdint>
@@ -31,12 +35,29 @@ struct BudgetCandidate {
   std::vector<std::string> assignments;
 };
 
-// The configurations worth measuring for `scene` over `base`: rays per probe 32 to 256, the
-// base grid and one of half the probes per axis over the same extent (single-grid fields), and
-// emitter light both sampled and carried by the field, only where the scene has emissive
-// surfaces (sampled with one sample as well, where the base takes more). At most 24.
+// The configurations worth measuring for `scene` over `base`, each an assignment of some of
+// these axes over the base (the base itself, "static default", first):
+// - light gathering: a self-shadowing bias of 0.5, one traced bounce past each probe ray's hit,
+//   the two together, one bounce blended linearly (what keeps or loses a scene's light:
+//   docs/results/default-energy.md);
+// - rays per probe: 32, 64, the base's, 256;
+// - emitter light sampled or carried by the field, whichever the base does not do (one sample
+//   as well where the base takes more), only where the scene has emissive surfaces; crossed
+//   with the static and one-bounce gathering only;
+// - half the probes per axis over the same extent (single grids), at 32 rays;
+// - paths per pixel (kPixelPathsCandidates), which bring light no probe grid holds, at the
+//   base's rays.
+// An axis whose parameters the session set by hand (`fixed`: "name=value" assignments or bare
+// names) keeps them: it is not varied.
 std::vector<BudgetCandidate> budget_candidates(const Scene& scene,
-                                               const IrradianceFieldParams& base);
+                                               const IrradianceFieldParams& base,
+                                               const std::vector<std::string>& fixed = {});
+
+// The paths-per-pixel candidates: 1 and 4 paths of up to 32 vertices. cornell_nvpro's albedo-1
+// slot needs long paths (lavapipe, 160x90: 0.55 of the light with the field at the pixel, 0.61
+// with 2 vertices, 0.76 with 8, 0.96 with 32; docs/results/default-energy.md).
+inline constexpr uint32_t kPixelPathCounts[] = {1, 4};
+inline constexpr uint32_t kPixelPathVertices = 32;
 
 // Field updates after which a field is scored as settled: the budget calibration's and
 // ddgi-eval's default warm-up.
@@ -60,13 +81,22 @@ struct CalibrationOptions {
   uint32_t warmup_updates = kConvergedWarmupUpdates;
   // Timed frames per candidate (one field update each; the median counts), [1, 1000].
   uint32_t timed_frames = 7;
-  // Also score the field's part of the frame (View::kIndirect) against the path tracer's
-  // (PathTraceView::kFieldIndirect), for CalibratedCandidate::indirect_ratio: the energy
-  // calibration's (tools/field_energy.h) second axis. Off for the budget, which ranks by FLIP of
-  // the full image only and would pay a second reference for nothing.
-  bool score_indirect = false;
+  // A candidate whose first timed frame costs more than this (ms) is timed by that frame alone,
+  // [1, 1e6]: it fits no real-time budget, and its frames hold the one queue every stream shares
+  // (paths per pixel at 1080p: 65-150 ms each).
+  double slow_frame_ms = 50.0;
+  // Frames scored per candidate, each after one more field update, [2, 16]: their mean is the
+  // candidate's error, their spread its noise (CalibratedCandidate::flip_noise).
+  uint32_t scored_frames = 3;
   // What the progress log calls the calibration ("budget calibration 3/8 ...").
   const char* purpose = "budget";
+  // A background calibration's hooks (service/calibrator.h): `progress` after each candidate
+  // with (done, total); `cancelled` before each, true ending the calibration (CANCELLED).
+  struct Hooks {
+    std::function<void(size_t, size_t)> progress;
+    std::function<bool()> cancelled;
+  };
+  Hooks hooks;
   // Tests only (lavapipe's times mean nothing): each candidate's cost in ms, by index; timing
   // is skipped. Empty: measure.
   std::vector<double> injected_ms;
@@ -75,19 +105,29 @@ Status validate(const CalibrationOptions& options);
 
 struct CalibratedCandidate {
   BudgetCandidate candidate;
-  double field_ms = 0.0;  // medians over the timed frames (GPU timestamps)
+  // Medians over the timed frames (GPU timestamps), by timing group: every pass a frame runs.
+  double shadow_ms = 0.0;
+  double field_ms = 0.0;
   double frame_ms = 0.0;
-  double flip = 0.0;            // of the full image against the reference
-  double mean_ratio = 0.0;      // mean luminance over the reference's
-  double indirect_ratio = 0.0;  // the same of the field's part (options.score_indirect), else 0
-  double cost_ms() const { return field_ms + frame_ms; }
+  uint32_t timed_frames = 0;  // how many (1 for a candidate over slow_frame_ms)
+  // Mean over the scored frames of the full image's FLIP against the reference, and its
+  // standard error (sample deviation / sqrt(frames)).
+  double flip = 0.0;
+  double flip_noise = 0.0;
+  // Mean luminance over the reference's, and its standard error: the frames' spread and the
+  // reference's own noise (Calibration::reference_noise), added in quadrature.
+  double mean_ratio = 0.0;
+  double mean_ratio_noise = 0.0;
+  double cost_ms() const { return shadow_ms + field_ms + frame_ms; }
 };
 
 struct Calibration {
   std::string device;
   uint32_t width = 0, height = 0;
   std::vector<CalibratedCandidate> candidates;
-  double seconds = 0.0;  // wall time the calibration took
+  double seconds = 0.0;          // wall time the calibration took
+  double reference_mean = 0.0;   // the reference's mean luminance (0: a black view)
+  double reference_noise = 0.0;  // its relative noise (ReferencePair::mean_noise)
 };
 
 // Measures every candidate over one GI stack of `base` on `scene` seen by `camera` (the session's
@@ -102,21 +142,6 @@ Result<Calibration> calibrate(vk::Context& context, const Scene& scene, const Ca
 inline constexpr double kMaxBudgetMs = 1e6;
 Status check_budget_ms(double budget_ms);
 
-// The candidate of lowest FLIP whose cost fits `budget_ms` (ties: the cheaper). An impossible
-// budget is refused naming the cheapest candidate and its cost.
-Result<size_t> choose_within_budget(const Calibration& calibration, double budget_ms);
-
-// A budget's outcome, as sessions report it.
-struct BudgetChoice {
-  double budget_ms = 0.0;
-  std::string device;  // the calibration's
-  uint32_t width = 0, height = 0;
-  CalibratedCandidate chosen;
-  size_t candidates = 0;
-  double calibration_seconds = 0.0;
-  bool from_cache = false;
-};
-
 // Calibrations kept per key (scene content, device, frame size, base parameters, options):
 // a scene loaded again, by any session, is not measured again. In memory, and with a directory
 // also on disk (one JSON file per key, written whole then renamed), so a restarted server does
@@ -127,6 +152,11 @@ class BudgetCache {
   using Measure = std::function<Result<Calibration>()>;
   // Keeps calibrations in `dir` too (created if missing); empty: memory only.
   Status persist_in(const std::string& dir);
+  const std::string& dir() const { return dir_; }
+  // The kept calibration of `key` (memory, then disk), if any: no measuring.
+  std::optional<Calibration> find(const std::string& key);
+  // Keeps `calibration` under `key` (and writes its file).
+  void put(const std::string& key, const Calibration& calibration);
   // The cached calibration of `key`, or `measure`'s (kept when it succeeded); `from_cache` says
   // which.
   Result<Calibration> get_or_measure(const std::string& key, const Measure& measure,
@@ -143,14 +173,14 @@ class BudgetCache {
   std::string dir_;
 };
 
-// The cache key of a calibration: a hash of what decides its result.
-std::string calibration_key(const vk::Context& context, const Scene& scene,
-                            const GiStackOptions& base, const CalibrationOptions& options);
+// What a calibration file's key starts with: a calibration measured by an older rule (other
+// candidates, other fields) is never taken for one of this.
+inline constexpr const char* kCalibrationFormat = "calibration v2";
 
-// Loads the budget's choice: calibrates `scene` (or takes the cached calibration) and picks the
-// best candidate within `budget_ms`; `base.field` gets the chosen assignments applied.
-Result<BudgetChoice> apply_budget(vk::Context& context, const Scene& scene, const Camera& camera,
-                                  GiStackOptions& base, double budget_ms,
-                                  const CalibrationOptions& options, BudgetCache& cache);
+// The cache key of a calibration: a hash of what decides its result (the scene's content, the
+// device and driver, the frame, the options, the base parameters and what the session fixed).
+std::string calibration_key(const vk::Context& context, const Scene& scene,
+                            const GiStackOptions& base, const CalibrationOptions& options,
+                            const std::vector<std::string>& fixed = {});
 
 }  // namespace ddgi::tools

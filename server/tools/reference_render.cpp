@@ -8,6 +8,7 @@
 
 #include "core/log.h"
 #include "encode/write_image.h"
+#include "tools/eval_job.h"
 
 namespace ddgi {
 namespace {
@@ -100,9 +101,23 @@ Result<ReferencePair> reference_pair(vk::Context& context, GpuScene& scene,
     }
     return ok_status();
   };
-  // The full reference first: it sets the exposure both are tone-mapped with.
-  DDGI_TRY(accumulate(PathTraceView::kFull, options.full_spp));
+  // The full reference first: it sets the exposure both are tone-mapped with. Read at half
+  // its samples too where its noise is wanted: the second half's mean is 2 x full - first.
+  const uint32_t first_half = options.estimate_mean_noise ? options.full_spp / 2 : 0;
+  double first_half_mean = 0.0;
+  if (first_half > 0) {
+    DDGI_TRY(accumulate(PathTraceView::kFull, first_half));
+    DDGI_ASSIGN_OR_RETURN(const PathTraceImage half, tracer->read(Tonemap::kAces, 1.0f));
+    first_half_mean = tools::mean_luminance(half.radiance);
+  }
+  DDGI_TRY(accumulate(PathTraceView::kFull, options.full_spp - first_half));
   DDGI_ASSIGN_OR_RETURN(const PathTraceImage linear, tracer->read(Tonemap::kAces, 1.0f));
+  if (first_half > 0) {
+    const double full_mean = tools::mean_luminance(linear.radiance);
+    const double second_half_mean = 2.0 * full_mean - first_half_mean;
+    pair.mean_noise =
+        full_mean > 0.0 ? std::abs(first_half_mean - second_half_mean) / (2.0 * full_mean) : 0.0;
+  }
   pair.exposure = options.exposure ? options.exposure(linear.radiance) : 1.0f;
   DDGI_ASSIGN_OR_RETURN(pair.full, tracer->read(Tonemap::kAces, pair.exposure));
   if (options.second_spp == 0) return pair;

@@ -37,6 +37,10 @@ struct ReferencePair {
   float exposure = 1.0f;
   PathTraceImage full;
   PathTraceImage second;
+  // With ReferencePairOptions::estimate_mean_noise: the full image's mean luminance's relative
+  // noise, from its two halves of full_spp / 2 samples each (|mean A - mean B| / 2 over the
+  // mean: one draw of about 0.9 standard deviations of the whole); else 0.
+  double mean_noise = 0.0;
 };
 struct ReferencePairOptions {
   uint32_t width = 480, height = 270;
@@ -45,6 +49,7 @@ struct ReferencePairOptions {
   PathTraceView second_view = PathTraceView::kFieldIndirect;
   uint32_t second_spp = 1024;  // 0: no second view (ReferencePair::second stays empty)
   float (*exposure)(const std::vector<float>& radiance) = nullptr;  // from the full image
+  bool estimate_mean_noise = false;  // ReferencePair::mean_noise (one more readback)
 };
 Result<ReferencePair> reference_pair(vk::Context& context, const Scene& scene,
                                      const ReferencePairOptions& options);

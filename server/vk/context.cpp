@@ -7,6 +7,7 @@
 #include "core/log.h"
 #include "vk/check.h"
 #include "vk/command_slot.h"
+#include "vk/gpu_share.h"
 
 namespace ddgi::vk {
 namespace {
@@ -521,6 +522,7 @@ Result<uint64_t> Context::submit(const VkSubmitInfo& info, VkFence fence) {
       std::lock_guard<std::mutex> serials(serial_mutex_);
       const uint64_t serial = ++submitted_serial_;
       pending_serials_.insert(serial);
+      gpu_share::submitted();
       return serial;
     }
   }
@@ -537,6 +539,7 @@ Status Context::wait(uint64_t serial, VkFence fence) {
   if (result == VK_SUCCESS) result = injected_fault(FaultSite::kFenceWait);
   if (result == VK_ERROR_DEVICE_LOST) return lose_device(result, "vkWaitForFences");
   if (result != VK_SUCCESS) return vk_error(result, "vkWaitForFences");
+  gpu_share::waited();  // outside every lock: a throttled thread sleeps here
   return ok_status();
 }
 

@@ -1,8 +1,9 @@
-// The time budget (tools/field_budget.h): candidates from scene analysis, a calibration that
-// scores every candidate against the path tracer (costs injected: lavapipe's times mean nothing),
-// the choice of the lowest error that fits, the refusal of a budget nothing fits, the cache, and
-// ddgi-eval --budgets, which checks the choice against the measured trade; and the clock
-// warm-up that every timing starts with (tools::keep_gpu_busy).
+// A session's configuration (tools/field_budget.h, tools/field_choice.h): candidates from scene
+// analysis and what the session fixed, a calibration that scores every candidate against the
+// path tracer with its noise (costs injected: lavapipe's times mean nothing), the choice within a
+// budget and the cheapest where nothing fits, the cache, and ddgi-eval --budgets, which checks
+// the choice against the measured trade; and the clock warm-up that every timing starts with
+// (tools::keep_gpu_busy). The rule on hand-made tables: tests/unit/tools/field_choice_test.cpp.
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@
 #include "tests/gpu/cli_run.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/procedural.h"
-#include "tools/field_budget.h"
+#include "tools/field_choice.h"
 #include "tools/tool_support.h"
 
 namespace ddgi::test {
@@ -57,109 +58,120 @@ tools::CalibrationOptions tiny_calibration(size_t candidates) {
   return options;
 }
 
-// The index a correct choice gives: the lowest FLIP among the candidates within the budget.
-std::optional<size_t> best_within(const Calibration& c, double budget_ms) {
-  std::optional<size_t> best;
-  for (size_t i = 0; i < c.candidates.size(); ++i) {
-    if (c.candidates[i].cost_ms() > budget_ms) continue;
-    if (!best || c.candidates[i].flip < c.candidates[*best].flip) best = i;
-  }
-  return best;
-}
+// What a session may fix to keep a calibration small on lavapipe: the gathering and paths per
+// pixel (rays, grid and emitters stay open).
+const std::vector<std::string> kFixedGathering = {"probe_bounces=0", "pixel_paths=0"};
 
 class FieldBudgetTest : public GpuTest {};
 
-TEST_F(FieldBudgetTest, CandidatesVaryOnlyWhatTheSceneHas) {
+TEST_F(FieldBudgetTest, CandidatesVaryOnlyWhatTheSceneHasAndTheSessionLeftOpen) {
   const GiStackOptions base = small_field(context());
   const std::vector<BudgetCandidate> lit = tools::budget_candidates(emitter_lit_box(), base.field);
   const std::vector<BudgetCandidate> plain =
       tools::budget_candidates(make_cornell_box(), base.field);
-  // Rays 32..256 x {grid, coarse} x {no emitter sampling, emitters 2}; no emitters: half.
-  EXPECT_EQ(lit.size(), 16u);
-  EXPECT_EQ(plain.size(), 8u);
+  // Gathering (static, bias, paths 1, both, gamma 1) x rays {32, 64, 128 = base, 256}, emitters
+  // {field, sampled} beside the static and one-bounce gathering: 4 x (2 + 1 + 2 + 1 + 1) = 28;
+  // the coarse grid at 32 rays x emitters: 2; paths per pixel 1x32 and 4x32: 2.
+  EXPECT_EQ(lit.size(), 32u);
+  EXPECT_EQ(plain.size(), 23u);  // no emitters: 20 + 1 + 2
   for (const BudgetCandidate& c : plain) {
     EXPECT_EQ(c.name.find("emitters"), std::string::npos) << c.name;
   }
-  // The coarse grid keeps the extent: 4 probes 0.6 apart -> 2 probes 1.8 apart.
-  EXPECT_EQ(lit[1].name, "rays 32, emitters 2");
-  EXPECT_EQ(lit[2].name, "rays 32, coarse");
+  EXPECT_EQ(lit[0].name, "static default");
+  EXPECT_TRUE(lit[0].assignments.empty());
+  EXPECT_EQ(lit[1].name, "emitters 2");
+  EXPECT_EQ(lit[2].name, "rays 32");
+  EXPECT_EQ(lit[3].name, "rays 32, emitters 2");
+  EXPECT_EQ(lit[8].name, "bias 0.5");
+  EXPECT_EQ(lit[28].name, "rays 32, coarse");
+  EXPECT_EQ(lit[31].name, "pixel paths 4x32");
+  EXPECT_EQ(lit[31].assignments,
+            (std::vector<std::string>{"pixel_paths=4", "pixel_path_vertices=32"}));
   // A base that samples emitters already (an emitter-lit scene's default) is varied the other
   // way, emitter light carried by the field, and with one sample where it takes more.
   IrradianceFieldParams sampled = base.field;
   sampled.emitter_samples = kSceneEmitterSamples;
   const std::vector<BudgetCandidate> flipped = tools::budget_candidates(emitter_lit_box(), sampled);
-  ASSERT_EQ(flipped.size(), 24u);
-  EXPECT_EQ(flipped[1].name, "rays 32, emitters 1");
+  ASSERT_EQ(flipped.size(), 41u);  // 4 x (3 + 1 + 3 + 1 + 1) + 3 + 2
+  EXPECT_EQ(flipped[1].name, "emitters 1");
   EXPECT_EQ(flipped[1].assignments.back(), "emitter_samples=1");
-  EXPECT_EQ(flipped[2].name, "rays 32, emitters via field");
+  EXPECT_EQ(flipped[2].name, "emitters via field");
   EXPECT_EQ(flipped[2].assignments.back(), "emitter_samples=0");
-  EXPECT_EQ(flipped[3].name, "rays 32, coarse");
-  sampled.emitter_samples = 1;
-  const std::vector<BudgetCandidate> single = tools::budget_candidates(emitter_lit_box(), sampled);
-  ASSERT_EQ(single.size(), 16u);
-  EXPECT_EQ(single[1].name, "rays 32, emitters via field");
   IrradianceFieldParams coarse = base.field;
-  ASSERT_TRUE(field_param_table().apply(coarse, lit[2].assignments).ok());
+  ASSERT_TRUE(field_param_table().apply(coarse, lit[28].assignments).ok());
   EXPECT_EQ(coarse.counts, glm::ivec3(2, 2, 2));
   EXPECT_NEAR(coarse.spacing.x, 1.8f, 1e-5f);
+  EXPECT_EQ(coarse.rays_per_probe, 32u);
+  // What the session fixed is not varied: rays fixed leaves 5 gatherings, the coarse grid and
+  // the pixel paths; the gathering and paths fixed leave rays x emitters and the coarse grid.
+  EXPECT_EQ(tools::budget_candidates(make_cornell_box(), base.field, {"rays_per_probe=64"}).size(),
+            8u);
+  const auto open_rays = tools::budget_candidates(emitter_lit_box(), base.field, kFixedGathering);
+  EXPECT_EQ(open_rays.size(), 10u);
+  for (const BudgetCandidate& c : open_rays) {
+    for (const std::string& a : c.assignments) {
+      EXPECT_EQ(a.find("probe_bounces"), std::string::npos) << c.name;
+      EXPECT_EQ(a.find("pixel_paths"), std::string::npos) << c.name;
+    }
+  }
   // A field of cascades keeps its grid (halving one cascade's probes is not a cheaper field of
   // the same reach).
   IrradianceFieldParams cascades = base.field;
   cascades.cascades = 2;
-  EXPECT_EQ(tools::budget_candidates(make_cornell_box(), cascades).size(), 4u);
+  EXPECT_EQ(tools::budget_candidates(make_cornell_box(), cascades).size(), 22u);
 }
 
-TEST_F(FieldBudgetTest, PicksTheLowestErrorThatFitsAndRefusesAnImpossibleBudget) {
+TEST_F(FieldBudgetTest, CalibratesWithNoiseAndServesEveryBudget) {
   const Scene scene = emitter_lit_box();
   const GiStackOptions base = small_field(context());
-  const std::vector<BudgetCandidate> candidates = tools::budget_candidates(scene, base.field);
+  const std::vector<BudgetCandidate> candidates =
+      tools::budget_candidates(scene, base.field, kFixedGathering);
   const tools::CalibrationOptions options = tiny_calibration(candidates.size());
   auto calibrated = tools::calibrate(context(), scene, scene.cameras[0], base, candidates, options);
   ASSERT_TRUE(calibrated.ok()) << calibrated.error().message;
   const Calibration& c = *calibrated;
   ASSERT_EQ(c.candidates.size(), candidates.size());
-  // The errors are measured, not trivial: in (0, 1) and not all alike.
+  EXPECT_GT(c.reference_mean, 0.0);
+  // The errors are measured, not trivial: in (0, 1), not all alike, each with a noise above 0
+  // and below the error itself.
   double low = 1.0, high = 0.0;
   for (const auto& point : c.candidates) {
     EXPECT_GT(point.flip, 0.0) << point.candidate.name;
     EXPECT_LT(point.flip, 0.5) << point.candidate.name;
+    EXPECT_GT(point.flip_noise, 0.0) << point.candidate.name;
+    EXPECT_LT(point.flip_noise, point.flip) << point.candidate.name;
+    EXPECT_GT(point.mean_ratio, 0.5) << point.candidate.name;
+    EXPECT_LT(point.mean_ratio_noise, 0.2) << point.candidate.name;
     low = std::min(low, point.flip);
     high = std::max(high, point.flip);
   }
   EXPECT_GT(high - low, 1e-3) << "FLIP " << low << " .. " << high;
-  // Every budget from the cheapest candidate's cost up: the lowest error within it.
+  // Every budget from the cheapest candidate's cost up: a choice that fits it.
   for (double budget = 1.0; budget <= double(candidates.size()); budget += 1.0) {
-    auto chosen = tools::choose_within_budget(c, budget);
+    auto chosen = tools::choose_configuration(c, budget);
     ASSERT_TRUE(chosen.ok()) << chosen.error().message;
-    EXPECT_EQ(*chosen, best_within(c, budget).value()) << "budget " << budget;
-    EXPECT_LE(c.candidates[*chosen].cost_ms(), budget);
+    EXPECT_TRUE(chosen->budget_met);
+    EXPECT_LE(chosen->chosen.cost_ms(), budget);
   }
-  // Nothing fits: refused, naming the cheapest candidate (injected 1 ms: candidate 0).
-  auto impossible = tools::choose_within_budget(c, 0.5);
-  ASSERT_FALSE(impossible.ok());
-  EXPECT_EQ(impossible.error().code, ErrorCode::kFailedPrecondition);
-  EXPECT_NE(impossible.error().message.find("budget_ms 0.5 cannot be met"), std::string::npos)
-      << impossible.error().message;
-  EXPECT_NE(impossible.error().message.find("'rays 32', costs 1.000 ms"), std::string::npos)
-      << impossible.error().message;
-  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), 2e6}) {
-    auto refused = tools::choose_within_budget(c, bad);
-    ASSERT_FALSE(refused.ok()) << bad;
-    EXPECT_NE(refused.error().message.find("budget_ms must be in (0, 1e+06]"), std::string::npos)
-        << refused.error().message;
-  }
+  // Nothing fits: served with the cheapest (injected 1 ms: candidate 0) and its shortfall.
+  auto below = tools::choose_configuration(c, 0.5);
+  ASSERT_TRUE(below.ok()) << below.error().message;
+  EXPECT_FALSE(below->budget_met);
+  EXPECT_EQ(below->index, 0u);
+  EXPECT_NEAR(below->over_ms, 0.5, 1e-12);
 }
 
 // apply_budget: the chosen assignments land in the options; a second load of the same scene is
-// served from the cache (same choice, no measuring); an impossible budget changes nothing.
+// served from the cache (same choice, no measuring); a budget nothing fits gets the cheapest.
 TEST_F(FieldBudgetTest, ApplyBudgetSetsTheChoiceAndCachesTheCalibration) {
   const Scene scene = make_cornell_box();
   const GiStackOptions base = small_field(context());
-  const size_t count = tools::budget_candidates(scene, base.field).size();
+  const size_t count = tools::budget_candidates(scene, base.field, kFixedGathering).size();
   const tools::CalibrationOptions options = tiny_calibration(count);
   tools::BudgetCache cache;
   GiStackOptions first = base;
-  auto chosen = tools::apply_budget(context(), scene, scene.cameras[0], first, 4.0, options, cache);
+  auto chosen = tools::apply_budget(context(), scene, scene.cameras[0], first, kFixedGathering, 4.0,
+                                    options, cache);
   ASSERT_TRUE(chosen.ok()) << chosen.error().message;
   EXPECT_FALSE(chosen->from_cache);
   EXPECT_EQ(chosen->candidates, count);
@@ -170,17 +182,19 @@ TEST_F(FieldBudgetTest, ApplyBudgetSetsTheChoiceAndCachesTheCalibration) {
   EXPECT_EQ(first.field.counts, expected.counts);
 
   GiStackOptions second = base;
-  auto again = tools::apply_budget(context(), scene, scene.cameras[0], second, 4.0, options, cache);
+  auto again = tools::apply_budget(context(), scene, scene.cameras[0], second, kFixedGathering, 4.0,
+                                   options, cache);
   ASSERT_TRUE(again.ok()) << again.error().message;
   EXPECT_TRUE(again->from_cache);
   EXPECT_EQ(again->chosen.candidate.name, chosen->chosen.candidate.name);
   EXPECT_EQ(again->chosen.flip, chosen->chosen.flip);
 
   GiStackOptions third = base;
-  auto refused =
-      tools::apply_budget(context(), scene, scene.cameras[0], third, 0.5, options, cache);
-  ASSERT_FALSE(refused.ok());
-  EXPECT_EQ(third.field.rays_per_probe, base.field.rays_per_probe);
+  auto cheapest = tools::apply_budget(context(), scene, scene.cameras[0], third, kFixedGathering,
+                                      0.5, options, cache);
+  ASSERT_TRUE(cheapest.ok()) << cheapest.error().message;
+  EXPECT_FALSE(cheapest->budget_met);
+  EXPECT_EQ(cheapest->chosen.cost_ms(), 1.0);  // injected: the cheapest
 }
 
 // With a directory the cache keeps calibrations on disk: a new cache (a restarted server) on
@@ -193,13 +207,13 @@ TEST_F(FieldBudgetTest, CalibrationsKeptOnDiskServeARestartedServer) {
   const Scene scene = make_cornell_box();
   const GiStackOptions base = small_field(context());
   const tools::CalibrationOptions options =
-      tiny_calibration(tools::budget_candidates(scene, base.field).size());
+      tiny_calibration(tools::budget_candidates(scene, base.field, kFixedGathering).size());
   auto choose = [&](bool expect_cached) {
     tools::BudgetCache cache;  // a server started anew
     EXPECT_TRUE(cache.persist_in(dir.string()).ok());
     GiStackOptions chosen = base;
-    auto choice =
-        tools::apply_budget(context(), scene, scene.cameras[0], chosen, 4.0, options, cache);
+    auto choice = tools::apply_budget(context(), scene, scene.cameras[0], chosen, kFixedGathering,
+                                      4.0, options, cache);
     EXPECT_TRUE(choice.ok()) << choice.error().message;
     if (!choice.ok()) return tools::BudgetChoice{};
     EXPECT_EQ(choice->from_cache, expect_cached);
@@ -208,7 +222,8 @@ TEST_F(FieldBudgetTest, CalibrationsKeptOnDiskServeARestartedServer) {
   const tools::BudgetChoice first = choose(false);
   tools::BudgetCache names;
   ASSERT_TRUE(names.persist_in(dir.string()).ok());
-  const std::string file = names.file_of(tools::calibration_key(context(), scene, base, options));
+  const std::string file =
+      names.file_of(tools::calibration_key(context(), scene, base, options, kFixedGathering));
   ASSERT_TRUE(std::filesystem::exists(file)) << file;
   const tools::BudgetChoice kept = choose(true);
   EXPECT_EQ(kept.chosen.candidate.name, first.chosen.candidate.name);
@@ -232,8 +247,8 @@ TEST_F(FieldBudgetTest, CalibrationsKeptOnDiskServeARestartedServer) {
 
 // ddgi-eval --budgets end to end: the table measures the budget's candidates, then a budget
 // everything fits picks one of them (its row's measured FLIP is that configuration's in the
-// table) and a budget nothing fits is refused by name. Planted: the chosen row showing another
-// configuration's measurements fails the FLIP check.
+// table) and a budget nothing fits streams the cheapest, saying by how much it misses. Planted:
+// the chosen row showing another configuration's measurements fails the FLIP check.
 TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("ddgi-budget-eval-" + std::to_string(::getpid()));
@@ -251,9 +266,10 @@ TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
     if (cells.size() == 13 && cells[0] == "cornell_box") table_flip[cells[1]] = cells[5];
     if (cells.size() == 9 && cells[0] == "cornell_box") budget_rows.push_back(cells);
   }
-  // Rays 32..256 x {4x4x4, 2x2x2}: no emissive surface in the box.
-  EXPECT_EQ(table_flip.size(), 8u) << run.out;
-  EXPECT_TRUE(table_flip.count("rays 128, coarse")) << run.out;
+  // 5 gatherings x rays {32, 64, 128, 256}, the coarse grid, 2 pixel-path settings: no emissive
+  // surface in the box.
+  EXPECT_EQ(table_flip.size(), 23u) << run.out;
+  EXPECT_TRUE(table_flip.count("rays 32, coarse")) << run.out;
   ASSERT_EQ(budget_rows.size(), 2u) << run.out;
   const std::vector<std::string>& fits = budget_rows[0];
   EXPECT_EQ(fits[1], "1e+06");
@@ -262,8 +278,11 @@ TEST(BudgetEvalCli, MeasuresTheCandidatesAndPrintsEachBudgetsChoice) {
   EXPECT_GT(std::stod(fits[3]), 0.0);  // calibrated ms
   EXPECT_GT(std::stod(fits[4]), 0.0);  // measured ms
   EXPECT_GE(std::stod(fits[8]), 1.0);  // FLIP over the best within the budget: all fit
-  EXPECT_NE(budget_rows[1][2].find("refused: budget_ms 1e-06 cannot be met"), std::string::npos)
+  EXPECT_NE(budget_rows[1][2].find(", the cheapest: budget not met by "), std::string::npos)
       << run.out;
+  ASSERT_TRUE(
+      table_flip.count(budget_rows[1][2].substr(0, budget_rows[1][2].find(", the cheapest"))))
+      << budget_rows[1][2];
   // The calibration's own figures, one line per candidate on stderr: what the choice was made on.
   for (const auto& entry : table_flip) {
     const std::string& name = entry.first;

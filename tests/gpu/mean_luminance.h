@@ -1,5 +1,5 @@
 // Mean luminance of frames and of path-traced references, for the tests that compare a field's
-// light with the path tracer's (default_energy_test.cpp, field_energy_test.cpp).
+// light with the path tracer's (default_energy_test.cpp, session_choice_test.cpp).
 #pragma once
 
 #include <cstdint>

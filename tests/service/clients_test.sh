@@ -20,11 +20,11 @@ expect() {  # expect FILE PATTERN: the JSON in FILE contains PATTERN
 }
 
 # A bad flag value stops the server before it touches the GPU, naming the flag.
-if "$server_bin" --energy-calibration maybe >"$work/bad_flag.txt" 2>&1; then
-  fail "ddgi-server started with --energy-calibration maybe"
+if "$server_bin" --calibration maybe >"$work/bad_flag.txt" 2>&1; then
+  fail "ddgi-server started with --calibration maybe"
 fi
-grep -q -- "--energy-calibration must be auto, on or off (got 'maybe')" "$work/bad_flag.txt" ||
-  { cat "$work/bad_flag.txt" >&2; fail "the bad --energy-calibration value is not named"; }
+grep -q -- "--calibration must be auto, on or off (got 'maybe')" "$work/bad_flag.txt" ||
+  { cat "$work/bad_flag.txt" >&2; fail "the bad --calibration value is not named"; }
 if "$server_bin" --submit-ahead-ms -1 >"$work/bad_flag.txt" 2>&1; then
   fail "ddgi-server started with --submit-ahead-ms -1"
 fi
@@ -38,9 +38,9 @@ server=$!
 for _ in $(seq 1 300); do [ -s "$work/port" ] && break; sleep 0.1; done
 [ -s "$work/port" ] || { cat "$work/server.log"; fail "ddgi-server did not start"; }
 address="127.0.0.1:$(cat "$work/port")"
-# On lavapipe the energy calibration is left off by default, and the log says so.
-grep -q 'energy calibration off on a CPU device' "$work/server.log" ||
-  { cat "$work/server.log" >&2; fail "no line on the energy calibration's default"; }
+# On lavapipe the calibration is left off by default, and the log says so.
+grep -q 'no calibration on a CPU device' "$work/server.log" ||
+  { cat "$work/server.log" >&2; fail "no line on the calibration's default"; }
 c() { "$client_bin" --server "$address" "$@"; }
 
 c info >"$work/info.json"; expect "$work/info.json" '"cornell_box"'
