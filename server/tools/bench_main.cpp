@@ -20,6 +20,7 @@
 #include "render/frame_target.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "tools/field_choice.h"
 #include "tools/tool_support.h"
 #include "vk/context.h"
 
@@ -49,6 +50,10 @@ every combination of --grids and --rays. Prints a markdown table (median millise
                         field's GPU ms in frames with a scroll (clearing, relocating and
                         classifying the entering plane, then the update) and in the others;
                         0: no scrolling                                  [0]
+  --session-defaults    instead of --grids and --rays, one row per scene at what a
+                        ddgi-server session chooses for it: the fitted field with --field's
+                        parameters (kept), calibrated and chosen within the server's default
+                        budget (4 ms) at --width x --height; the choice goes to stderr
   --shader-stats        also print what the driver reports of every kernel it compiled
                         (registers, shared memory...: VK_KHR_pipeline_executable_properties)
   --device NAME         Vulkan device name filter
@@ -84,6 +89,7 @@ struct BenchJob {
   std::vector<FieldUpdatePath> paths;
   std::vector<std::string> field_assignments;
   int64_t scroll_every = 0;
+  bool session_defaults = false;  // --session-defaults: the session's choice, one row per scene
 };
 
 // The scroll table's row of one configuration.
@@ -133,6 +139,7 @@ Result<BenchJob> parse_job(const Flags& flags) {
   }
   if (job.paths.empty()) return invalid_argument("--paths: no update path given");
   job.field_assignments = flags.get_all("field");
+  job.session_defaults = flags.has("session-defaults");
   DDGI_ASSIGN_OR_RETURN(job.scroll_every, flags.get_int("scroll-every", 0, 0, 10000));
   return job;
 }
@@ -180,9 +187,25 @@ Status bench_row(vk::Context& context, const BenchJob& job, const std::string& s
   DDGI_ASSIGN_OR_RETURN(
       GiStackOptions options,
       fitted_gi_options(scene, true, job.settings.direct_mode, {}, {}, context.default_backend()));
-  DDGI_ASSIGN_OR_RETURN(options.field, grid_for(scene, grid, job.probes));
-  options.field.rays_per_probe = rays;
-  DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
+  if (job.session_defaults) {
+    // As a session: the fitted field and --field's parameters, then the rule's choice over them.
+    DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
+    tools::CalibrationOptions calibration;
+    calibration.width = job.settings.width;
+    calibration.height = job.settings.height;
+    calibration.purpose = "session";
+    tools::BudgetCache cache;
+    DDGI_ASSIGN_OR_RETURN(
+        const tools::BudgetChoice choice,
+        tools::apply_budget(context, scene, job.settings.camera, options, job.field_assignments,
+                            tools::kDefaultBudgetMs, calibration, cache));
+    std::fprintf(stderr, "%s, session default: %s\n", scene_path.c_str(),
+                 tools::describe(choice).c_str());
+  } else {
+    DDGI_ASSIGN_OR_RETURN(options.field, grid_for(scene, grid, job.probes));
+    options.field.rays_per_probe = rays;
+    DDGI_TRY(field_param_table().apply(options.field, job.field_assignments));
+  }
   DDGI_ASSIGN_OR_RETURN(auto gi, GiStack::create(context, scene, options));
   IrradianceField& field = *gi->field();
   DDGI_TRY(field.set_update_path(path));
@@ -250,7 +273,7 @@ Status run(int argc, char** argv) {
       Flags flags, Flags::parse(argc, argv,
                                 {"width", "height", "frames", "warmup", "grids", "probes", "rays",
                                  "paths", "backend", "field", "device", "scroll-every"},
-                                {"help", "shader-stats"}));
+                                {"help", "shader-stats", "session-defaults"}));
   if (flags.has("help") || flags.positional().empty()) {
     std::fputs(kUsage, stdout);
     return flags.has("help") ? ok_status() : invalid_argument("no scene given");
@@ -273,6 +296,11 @@ Status run(int argc, char** argv) {
   for (const std::string& scene_path : flags.positional()) {
     DDGI_ASSIGN_OR_RETURN(const Scene scene, load_scene(scene_path));
     job.settings.camera = default_camera(scene);
+    if (job.session_defaults) {
+      DDGI_TRY(
+          bench_row(*context, job, scene_path, scene, "auto", 0, job.paths.front(), scroll_rows));
+      continue;
+    }
     for (const std::string& grid : job.grids) {
       for (uint32_t rays : job.ray_counts) {
         for (FieldUpdatePath path : job.paths) {
