@@ -106,6 +106,8 @@ Result<BudgetChoice> apply_budget(vk::Context& context, const Scene& scene, cons
 }
 
 std::string describe(const BudgetChoice& c) {
+  char over[64];
+  std::snprintf(over, sizeof over, " BUDGET NOT MET by %.3f ms", c.over_ms);
   char text[512];
   std::snprintf(
       text, sizeof text,
@@ -113,8 +115,7 @@ std::string describe(const BudgetChoice& c) {
       "%ux%u) flip=%.4f+-%.4f mean/ref=%.3f+-%.3f%s%s candidates=%zu %s%.1f s",
       c.budget_ms, c.chosen.candidate.name.c_str(), c.chosen.cost_ms(), c.chosen.shadow_ms,
       c.chosen.field_ms, c.chosen.frame_ms, c.width, c.height, c.chosen.flip, c.chosen.flip_noise,
-      c.chosen.mean_ratio, c.chosen.mean_ratio_noise,
-      c.budget_met ? "" : (" BUDGET NOT MET by " + std::to_string(c.over_ms) + " ms").c_str(),
+      c.chosen.mean_ratio, c.chosen.mean_ratio_noise, c.budget_met ? "" : over,
       c.energy_met ? "" : " (light beyond 5% of the path tracer's)", c.candidates,
       c.from_cache ? "calibration=cached, measured in " : "calibration_s=", c.calibration_seconds);
   return text;
