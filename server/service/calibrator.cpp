@@ -125,11 +125,6 @@ std::shared_ptr<CalibrationJob> Calibrator::request(const std::string& key, size
   return job;
 }
 
-size_t Calibrator::pending() const {
-  std::lock_guard lock(mutex_);
-  return queue_.size() + (running_ ? 1 : 0);
-}
-
 void Calibrator::work() {
   std::unique_lock lock(mutex_);
   for (;;) {

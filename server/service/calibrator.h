@@ -86,8 +86,6 @@ class Calibrator {
   // The job of `key`: the one queued or running already, else a new one of `measure`.
   std::shared_ptr<CalibrationJob> request(const std::string& key, size_t candidates,
                                           CalibrationJob::Measure measure);
-  // Jobs queued or running now.
-  size_t pending() const;
 
  private:
   void work();

@@ -248,10 +248,9 @@ Result<ServerOptions> server_options(const Flags& flags) {
       flags.get_double("submit-ahead-ms", options.submit_ahead_ms, 0.0, kMaxSubmitAheadMs));
   DDGI_ASSIGN_OR_RETURN(
       options.default_budget_ms,
-      flags.get_double("budget-ms", options.default_budget_ms, 1e-3, tools::kMaxBudgetMs));
-  DDGI_ASSIGN_OR_RETURN(
-      options.calibration_share,
-      flags.get_double("calibration-share", options.calibration_share, 1e-3, 1.0));
+      flags.get_double("budget-ms", options.default_budget_ms, 0.0, tools::kMaxBudgetMs));
+  DDGI_ASSIGN_OR_RETURN(options.calibration_share,
+                        flags.get_double("calibration-share", options.calibration_share, 0.0, 1.0));
   DDGI_ASSIGN_OR_RETURN(const std::string frame, flags.get_string("budget-frame", "1920x1080"));
   const std::vector<std::string> sides = split(frame, 'x');
   if (sides.size() != 2) return invalid_argument("--budget-frame '" + frame + "' is not WxH");

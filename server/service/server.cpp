@@ -39,7 +39,9 @@ class WithoutReflection : public grpc::ServerBuilderOption {
 Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOptions options) {
   DDGI_TRY(validate(options.limits));
   DDGI_TRY(tools::validate(options.budget_calibration));
-  DDGI_TRY(tools::check_budget_ms(options.default_budget_ms));
+  if (const Status budget = tools::check_budget_ms(options.default_budget_ms); !budget.ok()) {
+    return invalid_argument("--budget-ms: " + budget.error().message);
+  }
   DDGI_TRY(check_calibration_share(options.calibration_share));
   DDGI_TRY(check_submit_ahead_ms(options.submit_ahead_ms));
   if (options.tls_cert_file.empty() != options.tls_key_file.empty()) {
@@ -56,7 +58,6 @@ Result<std::unique_ptr<Server>> Server::start(vk::Context& context, ServerOption
   env.submit_ahead = SubmitPacer::Millis(options.submit_ahead_ms);
   server->budget_.default_ms = options.default_budget_ms;
   server->budget_.calibration = options.budget_calibration;
-  server->budget_.calibrate = options.calibration;
   server->budget_.off_reason = options.calibration_off_reason;
   if (options.calibration) {
     server->budget_.calibrator = std::make_unique<Calibrator>(options.calibration_share);

@@ -3,6 +3,7 @@
 #include "service/session_budget.h"
 
 #include <cstdio>
+#include <sstream>
 
 #include "core/flags.h"
 
@@ -10,8 +11,9 @@ namespace ddgi::service {
 
 Status check_calibration_share(double share) {
   if (share > 0.0 && share <= 1.0) return ok_status();
-  return invalid_argument("--calibration-share must be in (0, 1] (got " + std::to_string(share) +
-                          ")");
+  std::ostringstream text;
+  text << "--calibration-share must be in (0, 1] (got " << share << ")";
+  return invalid_argument(text.str());
 }
 
 Result<std::optional<double>> take_budget(std::vector<std::string>& assignments) {

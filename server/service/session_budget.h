@@ -37,11 +37,10 @@ Status check_calibration_share(double share);
 struct BudgetService {
   double default_ms = tools::kDefaultBudgetMs;  // sessions that set no budget_ms (--budget-ms)
   tools::CalibrationOptions calibration;
-  // Whether scenes are calibrated (--calibration); `off_reason` says why not.
-  bool calibrate = false;
-  std::string off_reason;
   tools::BudgetCache cache;
-  std::unique_ptr<Calibrator> calibrator;  // when calibrate
+  // Scenes are calibrated where there is one (--calibration); else `off_reason` says why not.
+  std::unique_ptr<Calibrator> calibrator;
+  std::string off_reason;
 };
 
 // Takes every "budget_ms=VALUE" out of `assignments` (the last counts): nothing when there is

@@ -32,7 +32,7 @@ void SessionScene::take_cached_calibration(vk::Context& context, const Scene& sc
                                            const SessionOptions& options, BudgetService& budget,
                                            GiStackOptions& gi_options) {
   if (!options.gi) return;
-  if (!budget.calibrate) {
+  if (!budget.calibrator) {
     calibration_off_ = budget.off_reason;
     return;
   }
@@ -90,14 +90,14 @@ Result<std::unique_ptr<SessionScene>> SessionScene::load(
   if (loaded->choice_) {
     LOG_INFO << "configuration session=" << session_id << " scene=" << request.label << " "
              << tools::describe(*loaded->choice_);
-  } else if (options.gi && budget.calibrate) {
+  } else if (options.gi && budget.calibrator) {
     loaded->scene_to_calibrate_ = std::make_shared<const Scene>(std::move(scene));
   }
   return loaded;
 }
 
 void SessionScene::start_calibration(BudgetService& budget, std::function<void()> landed) {
-  if (!scene_to_calibrate_ || !budget.calibrator) return;
+  if (!scene_to_calibrate_) return;  // cached, no field, or no calibrator
   const std::vector<tools::BudgetCandidate> candidates =
       tools::budget_candidates(*scene_to_calibrate_, base_.field, fixed_);
   const std::string key = calibration_key_;

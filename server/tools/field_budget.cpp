@@ -97,14 +97,11 @@ Status time_frames(GiStack& gi, Renderer& renderer, FrameSettings settings,
     DDGI_ASSIGN_OR_RETURN(const FrameResult frame, renderer.render(settings, update));
     table.add(frame.pass_times);
     out.timed_frames = f + 1;
-    const double ms = vk::group_milliseconds(frame.pass_times, vk::PassGroup::kShadowField) +
-                      vk::group_milliseconds(frame.pass_times, vk::PassGroup::kIrradianceField) +
-                      vk::group_milliseconds(frame.pass_times, vk::PassGroup::kFrame);
-    if (f == 0 && ms > options.slow_frame_ms) break;
+    out.shadow_ms = table.group_median(vk::PassGroup::kShadowField);
+    out.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
+    out.frame_ms = table.group_median(vk::PassGroup::kFrame);
+    if (f == 0 && out.cost_ms() > options.slow_frame_ms) break;
   }
-  out.shadow_ms = table.group_median(vk::PassGroup::kShadowField);
-  out.field_ms = table.group_median(vk::PassGroup::kIrradianceField);
-  out.frame_ms = table.group_median(vk::PassGroup::kFrame);
   return ok_status();
 }
 

@@ -152,7 +152,6 @@ class BudgetCache {
   using Measure = std::function<Result<Calibration>()>;
   // Keeps calibrations in `dir` too (created if missing); empty: memory only.
   Status persist_in(const std::string& dir);
-  const std::string& dir() const { return dir_; }
   // The kept calibration of `key` (memory, then disk), if any: no measuring.
   std::optional<Calibration> find(const std::string& key);
   // Keeps `calibration` under `key` (and writes its file).

@@ -30,6 +30,18 @@ if "$server_bin" --submit-ahead-ms -1 >"$work/bad_flag.txt" 2>&1; then
 fi
 grep -q -- "--submit-ahead-ms must be in \[0, 1000\] (got -1)" "$work/bad_flag.txt" ||
   { cat "$work/bad_flag.txt" >&2; fail "the bad --submit-ahead-ms value is not named"; }
+# The session's configuration: each bad value named (planted: a wrong expected text fails).
+for bad in "--calibration-share 0|--calibration-share must be in (0, 1] (got 0)" \
+           "--budget-ms 0|--budget-ms: budget_ms must be in (0, 1e+06]" \
+           "--budget-cache /proc/ddgi-cache|--budget-cache: budget cache directory '/proc/ddgi-cache'"; do
+  flag=${bad%%|*} expected=${bad#*|}
+  # shellcheck disable=SC2086
+  if "$server_bin" --listen 127.0.0.1:0 --metrics-port -1 $flag >"$work/bad_flag.txt" 2>&1; then
+    fail "ddgi-server started with $flag"
+  fi
+  grep -qF -- "$expected" "$work/bad_flag.txt" ||
+    { cat "$work/bad_flag.txt" >&2; fail "the bad $flag is not named"; }
+done
 
 "$server_bin" --listen 127.0.0.1:0 --port-file "$work/port" --metrics-port -1 \
   --scene-root "$scene_root" --max-fps 30 --validation --web-port 0 --web-address 127.0.0.1 \
