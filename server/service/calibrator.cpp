@@ -54,24 +54,27 @@ void CalibrationJob::listen(Listener listener) {
   listener(*this);  // done already: told at once
 }
 
-std::shared_ptr<void> CalibrationJob::want() {
-  auto token = std::make_shared<int>(0);
+std::shared_ptr<void> CalibrationJob::join() {
   std::lock_guard lock(mutex_);
+  if (dropping_) return nullptr;
+  auto token = std::make_shared<int>(0);
   wanted_by_.push_back(token);
   return token;
 }
 
+bool CalibrationJob::still_wanted() {
+  std::lock_guard lock(mutex_);
+  dropping_ = dropping_ || std::all_of(wanted_by_.begin(), wanted_by_.end(),
+                                       [](const std::weak_ptr<void>& w) { return w.expired(); });
+  return !dropping_;
+}
+
 void CalibrationJob::run(double gpu_share, const std::atomic<bool>& stopping) {
-  auto wanted = [this] {
-    std::lock_guard lock(mutex_);
-    return std::any_of(wanted_by_.begin(), wanted_by_.end(),
-                       [](const std::weak_ptr<void>& w) { return !w.expired(); });
-  };
-  if (!wanted()) return finish(State::kDropped);
+  if (!still_wanted()) return finish(State::kDropped);
   state_ = State::kRunning;
   tools::CalibrationOptions::Hooks hooks;
   hooks.progress = [this](size_t done, size_t) { done_ = done; };
-  hooks.cancelled = [wanted, &stopping] { return stopping.load() || !wanted(); };
+  hooks.cancelled = [this, &stopping] { return stopping.load() || !still_wanted(); };
   Result<tools::Calibration> measured = [&] {
     vk::GpuShareScope share(gpu_share);
     return measure_(hooks);
@@ -83,7 +86,11 @@ void CalibrationJob::run(double gpu_share, const std::atomic<bool>& stopping) {
     std::lock_guard lock(mutex_);
     error_ = measured.error().message;
   }
-  finish(measured.ok() ? State::kDone : (wanted() ? State::kFailed : State::kDropped));
+  const bool dropped = [this] {
+    std::lock_guard lock(mutex_);
+    return dropping_;
+  }();
+  finish(measured.ok() ? State::kDone : (dropped ? State::kDropped : State::kFailed));
 }
 
 void CalibrationJob::finish(State state) {
@@ -112,17 +119,21 @@ Calibrator::~Calibrator() {
   worker_.join();
 }
 
-std::shared_ptr<CalibrationJob> Calibrator::request(const std::string& key, size_t candidates,
-                                                    CalibrationJob::Measure measure) {
+Calibrator::Ticket Calibrator::request(const std::string& key, size_t candidates,
+                                       CalibrationJob::Measure measure) {
   std::lock_guard lock(mutex_);
-  if (running_ && running_->key() == key) return running_;
+  if (running_ && running_->key() == key) {
+    if (std::shared_ptr<void> interest = running_->join()) return {running_, interest};
+  }
   for (const auto& job : queue_) {
-    if (job->key() == key) return job;
+    if (job->key() != key) continue;
+    if (std::shared_ptr<void> interest = job->join()) return {job, interest};
   }
   auto job = std::make_shared<CalibrationJob>(key, candidates, std::move(measure));
+  std::shared_ptr<void> interest = job->join();  // before the worker can see the job
   queue_.push_back(job);
   wake_.notify_all();
-  return job;
+  return {job, interest};
 }
 
 void Calibrator::work() {

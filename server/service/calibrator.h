@@ -49,12 +49,15 @@ class CalibrationJob {
   // Called once, on the worker thread, when it is done, failed or dropped (at once, on the
   // caller's thread, where it is already).
   void listen(Listener listener);
-  // Whether anyone still wants it: false once every listener's owner let go (see want()).
-  // `token` lives as long as the interest does (a session's scene holds it).
-  std::shared_ptr<void> want();
 
  private:
   friend class Calibrator;
+  // An interest in the job, held as long as it lasts (a session's scene holds it); nothing once
+  // the job is being dropped. Decided under the job's lock, as still_wanted() is, so that an
+  // interest is never added to a job that has just decided nobody wants it.
+  std::shared_ptr<void> join();
+  // Whether any interest is alive; the first time none is, the job is dropping for good.
+  bool still_wanted();
   // Runs the measurement unless nobody wants it; `stopping`: the server is going.
   void run(double gpu_share, const std::atomic<bool>& stopping);
   void finish(State state);
@@ -71,6 +74,7 @@ class CalibrationJob {
   std::string error_;
   std::vector<Listener> listeners_;
   std::vector<std::weak_ptr<void>> wanted_by_;
+  bool dropping_ = false;
 };
 
 const char* state_name(CalibrationJob::State state);
@@ -83,9 +87,15 @@ class Calibrator {
   Calibrator(const Calibrator&) = delete;
   Calibrator& operator=(const Calibrator&) = delete;
 
-  // The job of `key`: the one queued or running already, else a new one of `measure`.
-  std::shared_ptr<CalibrationJob> request(const std::string& key, size_t candidates,
-                                          CalibrationJob::Measure measure);
+  // A job and the caller's interest in it: the job ends early (dropped) once every interest is
+  // gone.
+  struct Ticket {
+    std::shared_ptr<CalibrationJob> job;
+    std::shared_ptr<void> interest;
+  };
+  // The job of `key` (the one queued or running already, unless it is being dropped, else a new
+  // one of `measure`), with an interest taken before the worker can see it.
+  Ticket request(const std::string& key, size_t candidates, CalibrationJob::Measure measure);
 
  private:
   void work();

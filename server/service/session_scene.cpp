@@ -111,8 +111,10 @@ void SessionScene::start_calibration(BudgetService& budget, std::function<void()
     cache->put(key, calibration);
     return calibration;
   };
-  job_ = budget.calibrator->request(key, candidates.size(), std::move(measure));
-  wants_job_ = job_->want();
+  Calibrator::Ticket ticket =
+      budget.calibrator->request(key, candidates.size(), std::move(measure));
+  job_ = std::move(ticket.job);
+  wants_job_ = std::move(ticket.interest);
   job_->listen([landed = std::move(landed)](const CalibrationJob&) { landed(); });
 }
 
