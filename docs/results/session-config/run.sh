@@ -5,8 +5,8 @@
 # GetSession until the calibration is done: the switch's time), then 5 s at the chosen
 # configuration (GPU ms per frame and field-update ms from the stream's own pass timings); for
 # the scenes in BUDGET_SCENES, budget_ms 2, 4, 8 and 16 set over RPC, 4 s each. With RESTART=1 a
-# second server on the same calibration folder loads the first SCENE again (it must not
-# calibrate). Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-server
+# second server on the same calibration folder loads the first SCENE again right after it is
+# measured (it must not calibrate), and measures the rest. Run through deploy/gpu-run.sh with `deploy/gpu-bundle.sh --scenes ddgi-server
 # ddgi-client-lean` carried (.devcarry, .gl). The folder CACHE (default /tmp/ddgi-calibrations)
 # outlives the call on a warm machine. Tables: docs/results/session-config/table.py OUT...
 # Usage: run.sh OUT SCENE...
@@ -67,13 +67,21 @@ measure_scene() {
   "${client[@]}" close --session "$session" >/dev/null
 }
 
-start_server server
-for scene in "$@"; do measure_scene "$scene"; done
-kill -TERM "$server" && wait "$server" || true
-if [ "${RESTART:-0}" = 1 ]; then
+restart_server() {  # a second server on the same calibration folder loads SCENE: it must not calibrate
+  kill -TERM "$server" && wait "$server" || true
   start_server restarted
   "${client[@]}" load "$1" >"$out/restart.$1.load.json"
   echo "restart: $(sed -n '/"calibration"/,/}/p' "$out/restart.$1.load.json" | tr -d '\n ')"
-  kill -TERM "$server" && wait "$server" || true
-fi
-cp -r "$cache" "$out/calibrations"
+  "${client[@]}" close --session "$(session_id "$out/restart.$1.load.json")" >/dev/null
+}
+
+# The restart comes right after the first scene, so a call cut short by its time limit still has it;
+# the other scenes are measured on the restarted server.
+start_server server
+first=$1
+for scene in "$@"; do
+  measure_scene "$scene"
+  rm -rf "$out/calibrations" && cp -r "$cache" "$out/calibrations"
+  if [ "$scene" = "$first" ] && [ "${RESTART:-0}" = 1 ]; then restart_server "$first"; fi
+done
+kill -TERM "$server" && wait "$server" || true
