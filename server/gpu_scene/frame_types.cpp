@@ -12,6 +12,8 @@ static_assert(uint32_t(DirectMode::kTracedShadows) == gpu::kDirectTracedShadows)
 static_assert(uint32_t(DirectMode::kUnshadowed) == gpu::kDirectUnshadowed);
 static_assert(uint32_t(DirectMode::kShadowField) == gpu::kDirectShadowField);
 static_assert(uint32_t(DirectMode::kAmbientOcclusion) == gpu::kDirectAmbientOcclusion);
+static_assert(uint32_t(DirectMode::kAoTraced) == gpu::kDirectAoTraced);
+static_assert(uint32_t(DirectMode::kAoCache) == gpu::kDirectAoCache);
 static_assert(uint32_t(View::kFull) == gpu::kViewFull);
 static_assert(uint32_t(View::kDirect) == gpu::kViewDirect);
 static_assert(uint32_t(View::kIndirect) == gpu::kViewIndirect);
@@ -32,8 +34,12 @@ Result<DirectMode> parse_direct_mode(const std::string& text) {
   if (text == "unshadowed") return DirectMode::kUnshadowed;
   if (text == "shadow-field") return DirectMode::kShadowField;
   if (text == "ao") return DirectMode::kAmbientOcclusion;
+  if (text == "ao-traced") return DirectMode::kAoTraced;
+  if (text == "ao-cache") return DirectMode::kAoCache;
   return invalid_argument(
-      "direct mode must be one of shadow-rays, unshadowed, shadow-field, ao (got '" + text + "')");
+      "direct mode must be one of shadow-rays, unshadowed, shadow-field, ao, ao-traced, ao-cache "
+      "(got '" +
+      text + "')");
 }
 
 const char* direct_mode_name(DirectMode mode) {
@@ -46,6 +52,10 @@ const char* direct_mode_name(DirectMode mode) {
       return "shadow-field";
     case DirectMode::kAmbientOcclusion:
       return "ao";
+    case DirectMode::kAoTraced:
+      return "ao-traced";
+    case DirectMode::kAoCache:
+      return "ao-cache";
   }
   return "unknown";
 }

@@ -17,6 +17,8 @@ enum class DirectMode : uint32_t {
   kUnshadowed = 1,
   kShadowField = 2,       // visibility reconstructed from the shadow field
   kAmbientOcclusion = 3,  // shadow field, plus the sky through the field's AO
+  kAoTraced = 4,          // shadow rays, plus the sky through AO traced per pixel (ao_samples)
+  kAoCache = 5,           // shadow rays, plus the sky through AO from the world cache
 };
 enum class View : uint32_t {
   kFull = 0,
@@ -29,12 +31,16 @@ enum class View : uint32_t {
 };
 
 Result<Tonemap> parse_tonemap(const std::string& text);
-// "shadow-rays", "unshadowed", "shadow-field", "ao".
+// "shadow-rays", "unshadowed", "shadow-field", "ao", "ao-traced", "ao-cache".
 Result<DirectMode> parse_direct_mode(const std::string& text);
 const char* direct_mode_name(DirectMode mode);
 // Whether `mode` reads a shadow field (the shadow-field and AO modes).
 inline bool uses_shadow_field(DirectMode mode) {
   return mode == DirectMode::kShadowField || mode == DirectMode::kAmbientOcclusion;
+}
+// Whether `mode` reads the world cache (gi/world_cache.h).
+inline bool uses_world_cache(DirectMode mode) {
+  return mode == DirectMode::kAoCache;
 }
 Result<View> parse_view(const std::string& text);
 

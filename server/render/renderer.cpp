@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "shared/frame_data.h"
+#include "shared/world_cache_data.h"
 
 namespace ddgi {
 namespace {
@@ -22,6 +23,10 @@ Status validate(const FrameSettings& s) {
   if (s.light_samples < 1 || s.light_samples > 64) {
     return invalid_argument("light samples per pixel must be in [1, 64] (got " +
                             std::to_string(s.light_samples) + ")");
+  }
+  if (s.ao_samples < 1 || s.ao_samples > 4096) {
+    return invalid_argument("AO samples per pixel must be in [1, 4096] (got " +
+                            std::to_string(s.ao_samples) + ")");
   }
   if (!(s.exposure > 0.0f) || !(s.exposure <= 1e9f)) {
     return invalid_argument("exposure must be in (0, 1e9] (got " + std::to_string(s.exposure) +
@@ -124,6 +129,29 @@ Status Renderer::create_field_kernels() {
   return ok_status();
 }
 
+Status Renderer::create_world_cache(const FrameSettings& settings) {
+  if (!uses_world_cache(settings.direct_mode) || world_cache_) return ok_status();
+  DDGI_ASSIGN_OR_RETURN(world_cache_, WorldCache::create(context_, world_cache_params_));
+  const std::vector<VkDescriptorSetLayout> layouts = {scene_.layout(), frame_layout_.handle(),
+                                                      world_cache_->layout()};
+  DDGI_ASSIGN_OR_RETURN(
+      ao_cache_update_,
+      vk::Kernel::create(
+          context_, {"ao_cache_update", true, layouts, sizeof(gpu::WorldCacheDispatch)}, backend_));
+  DDGI_ASSIGN_OR_RETURN(
+      direct_ao_cache_,
+      vk::Kernel::create(context_, {"direct_ao_cache", true, layouts, sizeof(gpu::DirectConstants)},
+                         backend_));
+  return ok_status();
+}
+
+Status Renderer::set_world_cache_params(const WorldCacheParams& params) {
+  DDGI_TRY(validate(params));
+  world_cache_params_ = params;
+  world_cache_.reset();  // made again, empty, by the next frame that reads it
+  return ok_status();
+}
+
 Status Renderer::check_inputs(const FrameSettings& settings) const {
   DDGI_TRY(validate(settings));
   const bool field_view = settings.view == View::kProbes || settings.view == View::kAtlas;
@@ -148,7 +176,8 @@ struct FrameConstants {
   gpu::TonemapConstants tonemap{};
 };
 
-FrameConstants frame_constants(const FrameSettings& settings, const IrradianceField* field) {
+FrameConstants frame_constants(const FrameSettings& settings, const IrradianceField* field,
+                               const WorldCacheParams& cache) {
   const CameraBasis basis = camera_basis(settings.camera, settings.width, settings.height);
   FrameConstants c;
   gpu::PrimaryConstants& primary = c.primary;
@@ -167,6 +196,8 @@ FrameConstants frame_constants(const FrameSettings& settings, const IrradianceFi
   direct.view = static_cast<uint32_t>(settings.view);
   direct.camera_position = basis.position;
   direct.light_samples = settings.light_samples;
+  direct.ao_samples = settings.ao_samples;
+  direct.ao_distance = cache.ao_distance;
   // Without an irradiance field nothing else brings the sky: the AO mode adds it.
   direct.flags = field ? 0u : gpu::kDirectAddSky;
   // The field decides where emitter light comes from; the frame must agree or count it twice.
@@ -203,7 +234,7 @@ FrameConstants frame_constants(const FrameSettings& settings, const IrradianceFi
 
 std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
                                              const FrameTarget& target) const {
-  const FrameConstants c = frame_constants(settings, field_);
+  const FrameConstants c = frame_constants(settings, field_, world_cache_params_);
   const std::vector<VkDescriptorSet> frame_sets = {scene_.descriptor_set(), target.frame_set()};
   const glm::uvec3 size{settings.width, settings.height, 1};
   const vk::Buffer& gbuffer = target.gbuffer();
@@ -225,7 +256,13 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
   std::vector<vk::Pass> passes;
   passes.push_back(
       pass("primary", primary_, frame_sets, vk::Pass::push(c.primary), {}, {&gbuffer}));
-  if (uses_shadow_field(settings.direct_mode)) {
+  if (uses_world_cache(settings.direct_mode)) {
+    for (vk::Pass& p : world_cache_passes(settings, target)) passes.push_back(std::move(p));
+    passes.push_back(
+        pass("direct", direct_ao_cache_,
+             {scene_.descriptor_set(), target.frame_set(), world_cache_->descriptor_set()},
+             vk::Pass::push(c.direct), {&gbuffer}, {&radiance}));
+  } else if (uses_shadow_field(settings.direct_mode)) {
     passes.push_back(
         pass("direct", direct_shadow_field_,
              {scene_.descriptor_set(), target.frame_set(), shadow_field_->sampling_set()},
@@ -259,6 +296,26 @@ std::vector<vk::Pass> Renderer::frame_passes(const FrameSettings& settings,
   return passes;
 }
 
+std::vector<vk::Pass> Renderer::world_cache_passes(const FrameSettings& settings,
+                                                   const FrameTarget& target) const {
+  // A pixel's footprint per unit distance: the image's height spans 2 tan(yfov/2) there.
+  const float footprint = 2.0f * std::tan(settings.camera.yfov * 0.5f) / float(settings.height);
+  std::vector<vk::Pass> passes =
+      world_cache_->begin_frame_passes(settings.camera.position, footprint, scene_.move_count());
+  vk::Pass samples;
+  samples.name = "ao cache samples";
+  samples.group = vk::PassGroup::kFrame;
+  samples.kernel = &ao_cache_update_;
+  samples.sets = {scene_.descriptor_set(), target.frame_set(), world_cache_->descriptor_set()};
+  samples.push_constants =
+      vk::Pass::push(gpu::WorldCacheDispatch{settings.width, settings.height, 0, 0});
+  samples.size = {settings.width, settings.height, 1};
+  samples.reads = {&target.gbuffer()};
+  passes.push_back(std::move(samples));
+  passes.push_back(world_cache_->resolve_pass());
+  return passes;
+}
+
 Result<std::vector<vk::Pass>> Renderer::raw_primary_passes(const FrameSettings& settings,
                                                            const FrameTarget& target) {
   if (!primary_raw_trace_.valid()) {
@@ -274,7 +331,8 @@ Result<std::vector<vk::Pass>> Renderer::raw_primary_passes(const FrameSettings& 
   pass.group = vk::PassGroup::kBaseline;
   pass.kernel = &primary_raw_trace_;
   pass.sets = {scene_.descriptor_set(), target.frame_set()};
-  pass.push_constants = vk::Pass::push(frame_constants(settings, field_).primary);
+  pass.push_constants =
+      vk::Pass::push(frame_constants(settings, field_, world_cache_params_).primary);
   pass.size = {settings.width, settings.height, 1};
   pass.writes = {&target.gbuffer()};
   return std::vector<vk::Pass>{pass};
@@ -296,6 +354,7 @@ Result<PendingFrame> Renderer::submit(const FrameSettings& settings, FrameTarget
                                       std::span<const vk::Pass> before) {
   DDGI_TRY(check_inputs(settings));
   DDGI_TRY(create_field_kernels());
+  DDGI_TRY(create_world_cache(settings));
   if (target.width() != settings.width || target.height() != settings.height) {
     return invalid_argument("the frame target is " + std::to_string(target.width()) + "x" +
                             std::to_string(target.height()) + ", the frame " +

@@ -15,6 +15,7 @@
 #include "core/result.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_field.h"
+#include "gi/world_cache.h"
 #include "gpu_scene/frame_types.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/frame_target.h"
@@ -49,6 +50,9 @@ struct FrameSettings {
   // Shadow rays per spherical light (radius > 0) and pixel in the shadow-rays mode, [1, 64].
   // 1: the real-time default, noisy penumbrae; more give smooth soft shadows.
   uint32_t light_samples = 1;
+  // AO rays per pixel in the ao-traced direct mode, [1, 4096]. 1: what a real-time frame can
+  // afford (the cache's input); many: the converged AO the cache is measured against.
+  uint32_t ao_samples = 1;
 };
 Status validate(const FrameSettings& settings);
 
@@ -128,12 +132,24 @@ class Renderer {
                                                    const FrameTarget& target);
   vk::TraceBackend backend() const { return backend_; }
 
+  // The world cache's parameters (the ao-cache direct mode). The cache is made on the first frame
+  // that reads it; new parameters replace it, empty.
+  Status set_world_cache_params(const WorldCacheParams& params);
+  const WorldCacheParams& world_cache_params() const { return world_cache_params_; }
+  // The cache, once a frame made it (nullptr before).
+  const WorldCache* world_cache() const { return world_cache_.get(); }
+
  private:
   Renderer(vk::Context& context, GpuScene& scene, IrradianceField* field, ShadowField* shadow_field)
       : context_(context), scene_(scene), field_(field), shadow_field_(shadow_field) {}
   Status create_kernels();
   // Builds the kernels the field's current parameters need and create_kernels() leaves out.
   Status create_field_kernels();
+  // Makes the world cache and its frame kernels when `settings` read it and they are missing.
+  Status create_world_cache(const FrameSettings& settings);
+  // The passes that feed the world cache at the frame's primary hits and fold the samples in.
+  std::vector<vk::Pass> world_cache_passes(const FrameSettings& settings,
+                                           const FrameTarget& target) const;
   // FAILED_PRECONDITION when the settings need a field this renderer was made without.
   Status check_inputs(const FrameSettings& settings) const;
 
@@ -152,6 +168,10 @@ class Renderer {
   vk::Kernel field_views_;
   vk::Kernel tonemap_;
   vk::Kernel yuv420_;
+  WorldCacheParams world_cache_params_;
+  std::unique_ptr<WorldCache> world_cache_;
+  vk::Kernel ao_cache_update_;               // the cache's AO samples; built with the cache
+  vk::Kernel direct_ao_cache_;               // the direct pass with the cache bound as set 2
   std::unique_ptr<FrameTarget> own_target_;  // for render() without a target
 };
 

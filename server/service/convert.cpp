@@ -390,6 +390,10 @@ Result<DirectMode> direct_mode_from_proto(v1::DirectMode mode) {
       return DirectMode::kShadowField;
     case v1::DIRECT_MODE_AMBIENT_OCCLUSION:
       return DirectMode::kAmbientOcclusion;
+    case v1::DIRECT_MODE_AO_TRACED:
+      return DirectMode::kAoTraced;
+    case v1::DIRECT_MODE_AO_CACHE:
+      return DirectMode::kAoCache;
     default:
       return invalid_argument("direct_mode " + std::to_string(int(mode)) + " is not a DirectMode");
   }

@@ -31,9 +31,12 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
                                                           [the scene's camera, or a fitted one]
   --backend B           auto | query | pipeline                         [auto]
   --view V              full | direct | indirect | albedo | normal | probes | atlas  [full]
-  --direct M            shadow-rays | unshadowed | shadow-field | ao    [shadow-rays]
-                        (docs/shadow-field.md)
+  --direct M            shadow-rays | unshadowed | shadow-field | ao | ao-traced | ao-cache
+                        [shadow-rays] (docs/shadow-field.md, docs/world-cache.md)
   --light-samples N     shadow rays per spherical light and pixel, 1..64 [1]
+  --ao-samples N        ao-traced: AO rays per pixel, 1..4096            [1]
+  --world-cache NAME=VALUE  set a world-cache parameter (repeatable); --world-cache help
+                        lists them (ao-cache: --frames feed the cache, one sample per pixel each)
   --shadow-field NAME=VALUE  set a shadow-field parameter (repeatable); --shadow-field help
                         lists them [grid of about 512 probes fitted to the scene's bounds]
   --tonemap T           aces | reinhard | clamp                         [aces]
@@ -77,16 +80,17 @@ struct RenderJob {
   bool gi = true;
   std::vector<std::string> field_assignments;
   std::vector<std::string> shadow_assignments;
+  WorldCacheParams world_cache;
   std::vector<double> camera_values;
 };
 
 Result<Flags> parse_flags(int argc, char** argv) {
   return Flags::parse(
       argc, argv,
-      {"out",       "width",        "height",       "camera",       "backend",   "view",
-       "direct",    "tonemap",      "exposure",     "jpeg-quality", "frames",    "device",
-       "log-level", "gi",           "warmup",       "field",        "reference", "max-bounces",
-       "seed",      "shadow-field", "light-samples"},
+      {"out",       "width",        "height",        "camera",       "backend",    "view",
+       "direct",    "tonemap",      "exposure",      "jpeg-quality", "frames",     "device",
+       "log-level", "gi",           "warmup",        "field",        "reference",  "max-bounces",
+       "seed",      "shadow-field", "light-samples", "ao-samples",   "world-cache"},
       {"validation", "help"});
 }
 
@@ -99,6 +103,11 @@ bool printed_help(const Flags& flags) {
   const std::vector<std::string> shadow_assignments = flags.get_all("shadow-field");
   if (!shadow_assignments.empty() && shadow_assignments.front() == "help") {
     std::fputs(shadow_param_table().help().c_str(), stdout);
+    return true;
+  }
+  const std::vector<std::string> cache_assignments = flags.get_all("world-cache");
+  if (!cache_assignments.empty() && cache_assignments.front() == "help") {
+    std::fputs(world_cache_param_table().help().c_str(), stdout);
     return true;
   }
   const std::vector<std::string> field_assignments = flags.get_all("field");
@@ -133,6 +142,9 @@ Status parse_frame_flags(const Flags& flags, RenderJob& job) {
   DDGI_ASSIGN_OR_RETURN(settings.direct_mode, parse_direct_mode(direct));
   DDGI_ASSIGN_OR_RETURN(const int64_t light_samples, flags.get_int("light-samples", 1, 1, 64));
   settings.light_samples = static_cast<uint32_t>(light_samples);
+  DDGI_ASSIGN_OR_RETURN(const int64_t ao_samples, flags.get_int("ao-samples", 1, 1, 4096));
+  settings.ao_samples = static_cast<uint32_t>(ao_samples);
+  DDGI_TRY(world_cache_param_table().apply(job.world_cache, flags.get_all("world-cache")));
   DDGI_ASSIGN_OR_RETURN(const std::string tonemap, flags.get_string("tonemap", "aces"));
   DDGI_ASSIGN_OR_RETURN(settings.tonemap, parse_tonemap(tonemap));
   DDGI_ASSIGN_OR_RETURN(job.camera_values, flags.get_doubles("camera", 6, 7));
@@ -236,6 +248,7 @@ Status render_frames(const RenderJob& job, vk::Context& context, const Scene& sc
   DDGI_ASSIGN_OR_RETURN(
       auto renderer, Renderer::create(context, gi->scene(), gi->field(), context.default_backend(),
                                       gi->shadow_field()));
+  DDGI_TRY(renderer->set_world_cache_params(job.world_cache));
   log_stack(job, scene, *gi);
   gi->track(job.settings.camera.position);
   DDGI_TRY(gi->warm_up(static_cast<uint32_t>(job.warmup)));
@@ -250,6 +263,14 @@ Status render_frames(const RenderJob& job, vk::Context& context, const Scene& sc
   std::printf("%s: %ux%u, backend %s, device %s\n", job.out_path.c_str(), frame.width, frame.height,
               vk::backend_name(renderer->backend()), context.caps().device_name.c_str());
   print_times(job, table, *gi);
+  if (const WorldCache* cache = renderer->world_cache()) {
+    const WorldCacheCounters c = cache->counters();
+    std::printf(
+        "world cache (last frame): %u of %u entries live (%.1f%%), %u inserted, %u evicted, "
+        "%u samples dropped, %u checksum rejects, %.1f MiB\n",
+        c.occupied, cache->capacity(), 100.0 * c.occupied / cache->capacity(), c.inserted,
+        c.evicted, c.dropped, c.checksum_rejects, double(cache->gpu_bytes()) / (1 << 20));
+  }
   return ok_status();
 }
 

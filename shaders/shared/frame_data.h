@@ -35,9 +35,13 @@ DDGI_CONST uint kDirectTracedShadows = 0u;
 DDGI_CONST uint kDirectUnshadowed = 1u;
 DDGI_CONST uint kDirectShadowField = 2u;       // visibility reconstructed from the shadow field
 DDGI_CONST uint kDirectAmbientOcclusion = 3u;  // shadow field + the sky through its AO
+// Traced shadow rays + the sky through AO traced per pixel (ao_samples rays): the reference.
+DDGI_CONST uint kDirectAoTraced = 4u;
+// Traced shadow rays + the sky through AO read from the world cache (shared/world_cache_data.h).
+DDGI_CONST uint kDirectAoCache = 5u;
 
 // DirectConstants::flags
-DDGI_CONST uint kDirectAddSky = 1u;  // AO mode: add the sky term (no irradiance field brings it)
+DDGI_CONST uint kDirectAddSky = 1u;  // AO modes: add the sky term (no irradiance field brings it)
 // Add emitter light by sampling emissive triangles (the field then carries no emission).
 DDGI_CONST uint kDirectSampleEmitters = 2u;
 
@@ -70,8 +74,8 @@ struct DirectConstants {
   uint light_samples;  // shadow rays per spherical light in the traced mode
   uint flags;          // kDirect* flags
   uint emitter_samples;  // kDirectSampleEmitters: emitter samples per pixel
-  uint pad1;
-  uint pad2;
+  uint ao_samples;       // kDirectAoTraced: AO rays per pixel
+  float ao_distance;     // the world cache's AO modes: longer AO rays are open
 };
 
 struct IndirectConstants {
@@ -146,8 +150,8 @@ static_assert(offsetof(DirectConstants, camera_position) == 16);
 static_assert(offsetof(DirectConstants, light_samples) == 28);
 static_assert(offsetof(DirectConstants, flags) == 32);
 static_assert(offsetof(DirectConstants, emitter_samples) == 36);
-static_assert(offsetof(DirectConstants, pad1) == 40);
-static_assert(offsetof(DirectConstants, pad2) == 44);
+static_assert(offsetof(DirectConstants, ao_samples) == 40);
+static_assert(offsetof(DirectConstants, ao_distance) == 44);
 
 static_assert(sizeof(IndirectConstants) == 32);
 static_assert(offsetof(IndirectConstants, camera_position) == 0);

@@ -13,6 +13,7 @@
 
 #include "gi/field_params.h"
 #include "gi/shadow_params.h"
+#include "gi/world_cache.h"
 
 namespace ddgi {
 namespace {
@@ -37,9 +38,15 @@ struct Field<ShadowFieldParams> {
   static std::vector<std::string> unbounded() { return {"split_update", "seed"}; }
 };
 
+template <>
+struct Field<WorldCacheParams> {
+  static const ParamTable<WorldCacheParams>& table() { return world_cache_param_table(); }
+  static std::vector<std::string> unbounded() { return {}; }
+};
+
 template <typename P>
 class ParamTableTest : public ::testing::Test {};
-using FieldTypes = ::testing::Types<IrradianceFieldParams, ShadowFieldParams>;
+using FieldTypes = ::testing::Types<IrradianceFieldParams, ShadowFieldParams, WorldCacheParams>;
 TYPED_TEST_SUITE(ParamTableTest, FieldTypes);
 
 TYPED_TEST(ParamTableTest, EveryParameterHasRangeCases) {
@@ -133,6 +140,18 @@ TYPED_TEST(ParamTableTest, NamesAreUniqueAndHelpHasALineEach) {
     EXPECT_THAT(help, HasSubstr(" " + spec.help + "\n")) << spec.name;
   }
   EXPECT_EQ(std::count(help.begin(), help.end(), '\n'), std::ssize(table.specs()));
+}
+
+// The world cache's one rule beyond its ranges: a table of a power of two slots (the shaders
+// mask keys into it). A control: the same number of slots rounded to a power passes.
+TEST(WorldCacheParams, EntriesMustBeAPowerOfTwo) {
+  WorldCacheParams p;
+  p.entries = 3000;
+  const Status status = validate(p);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.error().message, HasSubstr("world cache entries must be a power of two"));
+  p.entries = 4096;
+  EXPECT_TRUE(validate(p).ok());
 }
 
 }  // namespace
