@@ -21,6 +21,7 @@ static_assert(uint32_t(View::kAlbedo) == gpu::kViewAlbedo);
 static_assert(uint32_t(View::kNormal) == gpu::kViewNormal);
 static_assert(uint32_t(View::kProbes) == gpu::kViewProbes);
 static_assert(uint32_t(View::kAtlas) == gpu::kViewAtlas);
+static_assert(uint32_t(View::kCachePoints) == gpu::kViewCachePoints);
 
 Result<Tonemap> parse_tonemap(const std::string& text) {
   if (text == "clamp") return Tonemap::kClamp;
@@ -68,9 +69,11 @@ Result<View> parse_view(const std::string& text) {
   if (text == "normal") return View::kNormal;
   if (text == "probes") return View::kProbes;
   if (text == "atlas") return View::kAtlas;
+  if (text == "cache-points") return View::kCachePoints;
   return invalid_argument(
-      "view must be one of full, direct, indirect, albedo, normal, probes, atlas (got '" + text +
-      "')");
+      "view must be one of full, direct, indirect, albedo, normal, probes, atlas, cache-points "
+      "(got '" +
+      text + "')");
 }
 
 }  // namespace ddgi

@@ -26,8 +26,9 @@ enum class View : uint32_t {
   kIndirect = 2,
   kAlbedo = 3,
   kNormal = 4,
-  kProbes = 5,  // the full image with every probe drawn as a sphere shaded by its irradiance
-  kAtlas = 6,   // the irradiance atlas over the distance atlas
+  kProbes = 5,       // the full image with every probe drawn as a sphere shaded by its irradiance
+  kAtlas = 6,        // the irradiance atlas over the distance atlas
+  kCachePoints = 7,  // ao-cache mode: each surface coloured by the world-cache point it reads
 };
 
 Result<Tonemap> parse_tonemap(const std::string& text);

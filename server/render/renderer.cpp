@@ -158,6 +158,10 @@ Status Renderer::check_inputs(const FrameSettings& settings) const {
   if (field_view && !field_) {
     return failed_precondition("the probes and atlas views need an irradiance field (GI is off)");
   }
+  if (settings.view == View::kCachePoints && !uses_world_cache(settings.direct_mode)) {
+    return failed_precondition("the cache-points view needs the ao-cache direct mode (got " +
+                               std::string(direct_mode_name(settings.direct_mode)) + ")");
+  }
   if (uses_shadow_field(settings.direct_mode) && !shadow_field_) {
     return failed_precondition(std::string("the ") + direct_mode_name(settings.direct_mode) +
                                " direct mode needs a shadow field (none was created)");

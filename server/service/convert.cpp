@@ -518,6 +518,17 @@ void to_proto(const SessionState& session, uint64_t frames, uint64_t command_seq
   for (const LightSlot& slot : scene->lights().slots()) to_proto(slot, out->add_lights());
   for (const auto& [view_id, view] : session.views.all()) to_proto(view, out->add_views());
   if (scene->field()) to_proto(*scene, command_seq, out->mutable_field());
+  if (const WorldCache* cache = scene->world_cache()) {
+    const WorldCacheCounters c = cache->counters();
+    v1::WorldCacheInfo* info = out->mutable_world_cache();
+    info->set_capacity(cache->capacity());
+    info->set_occupied(c.occupied);
+    info->set_inserted(c.inserted);
+    info->set_evicted(c.evicted);
+    info->set_dropped(c.dropped);
+    info->set_checksum_rejects(c.checksum_rejects);
+    info->set_gpu_bytes(cache->gpu_bytes());
+  }
 }
 
 void to_proto(const SessionState& session, uint64_t frames, v1::SessionSummary* out) {

@@ -206,7 +206,8 @@ void SessionScene::calibration_to_proto(v1::FieldCalibration* out) const {
 
 uint64_t SessionScene::gpu_bytes() const {
   return gpu_scene().gpu_bytes() + (field() ? field()->gpu_bytes() : 0) +
-         (shadow_field() ? shadow_field()->gpu_bytes() : 0);
+         (shadow_field() ? shadow_field()->gpu_bytes() : 0) +
+         (world_cache() ? world_cache()->gpu_bytes() : 0);
 }
 
 Status SessionScene::upload_lights(const std::vector<Light>& lights) {

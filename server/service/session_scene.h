@@ -83,8 +83,10 @@ class SessionScene {
   }
   // FieldParams.calibration.
   void calibration_to_proto(v1::FieldCalibration* out) const;
-  // The scene's and both fields' GPU bytes.
+  // The scene's, both fields' and the world cache's GPU bytes.
   uint64_t gpu_bytes() const;
+  // The world cache, once an ao-cache frame made it (nullptr before, and in other modes).
+  const WorldCache* world_cache() const { return renderer_ ? renderer_->world_cache() : nullptr; }
 
   const LightSet& lights() const { return lights_; }
   // As LightSet's, uploading to the GPU scene.

@@ -30,7 +30,8 @@ Cornell box) and writes it to --out. Prints the GPU time of every pass.
   --camera px,py,pz,tx,ty,tz[,yfov]  position, target, vertical FOV in degrees
                                                           [the scene's camera, or a fitted one]
   --backend B           auto | query | pipeline                         [auto]
-  --view V              full | direct | indirect | albedo | normal | probes | atlas  [full]
+  --view V              full | direct | indirect | albedo | normal | probes | atlas |
+                        cache-points (ao-cache: the world-cache point each surface reads) [full]
   --direct M            shadow-rays | unshadowed | shadow-field | ao | ao-traced | ao-cache
                         [shadow-rays] (docs/shadow-field.md, docs/world-cache.md)
   --light-samples N     shadow rays per spherical light and pixel, 1..64 [1]

@@ -225,4 +225,33 @@ float cache_read(vec3 x, vec3 normal, float distance) {
   return weight > 0.0 ? result / weight : -1.0;
 }
 
+// The cache-points view: a colour per point, from its key, of the cached point weighing most at
+// x on the finer of x's two levels (dark grey where nothing near x is cached yet), so the cells
+// and the blend between points show.
+vec3 cache_point_colour(vec3 x, vec3 normal, float distance) {
+  const uint bucket = cache_normal_bucket(normal);
+  const uint level = uint(cache_level(distance));
+  const float r = cache_cell_size(level);
+  const ivec3 home = ivec3(floor(x / r));
+  float best = 0.0;
+  uint key = 0u;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (uint q = 0u; q < 8u; ++q) {
+          const CachePoint p = cache_point(level, home + ivec3(dx, dy, dz), q, bucket);
+          const float w = r - length(p.position - x);
+          if (w <= best || cache_find(p) < 0) continue;
+          best = w;
+          key = p.key;
+        }
+      }
+    }
+  }
+  if (key == 0u) return vec3(0.05);
+  const uint h = pcg_hash(key);
+  return vec3(float(h & 255u), float((h >> 8u) & 255u), float((h >> 16u) & 255u)) / 255.0 * 0.8 +
+         0.2;
+}
+
 #endif

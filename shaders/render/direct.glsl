@@ -68,6 +68,10 @@ void main() {
       result = s.albedo;
     } else if (pc.view == kViewNormal) {
       result = s.normal * 0.5 + 0.5;
+#ifdef DDGI_WORLD_CACHE_SET
+    } else if (pc.view == kViewCachePoints) {
+      result = cache_point_colour(s.position, s.normal, length(s.position - pc.camera_position));
+#endif
     } else if (pc.view == kViewIndirect) {
       result = emitters;
     } else {

@@ -53,6 +53,7 @@ DDGI_CONST uint kViewAlbedo = 3u;
 DDGI_CONST uint kViewNormal = 4u;
 DDGI_CONST uint kViewProbes = 5u;  // the full image with every probe drawn as a sphere
 DDGI_CONST uint kViewAtlas = 6u;   // the irradiance atlas (top) and distance atlas (bottom)
+DDGI_CONST uint kViewCachePoints = 7u;  // surfaces coloured by the world-cache point they read
 
 struct PrimaryConstants {
   vec3 camera_position;

@@ -4,9 +4,11 @@
 // sky only, GI off: a pixel's radiance is albedo x AO, so radiance differences bound AO ones.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -129,6 +131,41 @@ TEST_F(WorldCacheTest, StillCameraIsStableAfterWarmUp) {
               late);
   EXPECT_LT(late, 0.002);
   EXPECT_GT(early, 5.0 * late);
+}
+
+// The cache-points view colours each surface by the point it reads: hundreds of colours, each
+// over a patch of pixels (most pixels share their right neighbour's), and the sky untouched. Other
+// direct modes have no cache to show and are refused by name.
+TEST_F(WorldCacheTest, CachePointsViewShowsThePoints) {
+  make(load_repo_scene("box_on_floor.gltf"));
+  cache_frames(8);
+  settings_.view = View::kCachePoints;
+  const std::vector<float> points = frame(DirectMode::kAoCache);
+  ASSERT_EQ(points.size(), size_t(kWidth) * kHeight * 4);
+  std::set<std::array<float, 3>> colours;
+  size_t same_as_right = 0;
+  size_t pairs = 0;
+  for (uint32_t y = 0; y < kHeight; ++y) {
+    for (uint32_t x = 0; x + 1 < kWidth; ++x) {
+      const size_t i = (size_t(y) * kWidth + x) * 4;
+      colours.insert({points[i], points[i + 1], points[i + 2]});
+      same_as_right += points[i] == points[i + 4] && points[i + 1] == points[i + 5] &&
+                       points[i + 2] == points[i + 6];
+      ++pairs;
+    }
+  }
+  std::printf("cache-points view: %zu colours, %.2f of pixels as their right neighbour\n",
+              colours.size(), double(same_as_right) / pairs);
+  EXPECT_GT(colours.size(), 100u);
+  EXPECT_GT(double(same_as_right) / pairs, 0.5);
+  settings_.view = View::kCachePoints;
+  FrameSettings traced = settings_;
+  traced.direct_mode = DirectMode::kAoTraced;
+  const auto refused = renderer_->render(traced);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("cache-points view needs the ao-cache direct mode"),
+            std::string::npos)
+      << refused.error().message;
 }
 
 // Keys cut to 10 bits: some 650 points share 1024 keys. The first frame counts the checksum

@@ -8,6 +8,7 @@
 #include "gi/gi_stack.h"
 #include "gi/irradiance_field.h"
 #include "gi/shadow_params.h"
+#include "gi/world_cache.h"
 #include "gpu_scene/camera_fit.h"
 #include "gpu_scene/gpu_scene.h"
 #include "render/renderer.h"
@@ -422,6 +423,39 @@ TEST_F(E2eTest, AtlasDumpExrAndRaw) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_NE(status.error_message().find("has no shadow field"), std::string::npos)
       << status.error_message();
+}
+
+// A session in the world cache's AO mode (GI off, box_on_floor): GetSession has no cache before
+// the first frame; after frames it reports the table (capacity, live entries, its bytes, which
+// the session's GPU bytes include), and the frames carry the cache's passes.
+TEST_F(E2eTest, AoCacheSessionReportsItsCache) {
+  v1::CreateSessionRequest request = small_session_request("box_on_floor", 2);
+  request.set_gi(false);
+  request.set_direct_mode(v1::DIRECT_MODE_AO_CACHE);
+  const v1::SessionInfo created = create_session(request);
+  ASSERT_FALSE(created.session_id().empty());
+  EXPECT_FALSE(created.has_world_cache());
+  v1::Frame frame;
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(render(created.session_id(), 48, 36, &frame).ok());
+  bool cache_pass = false;
+  for (const auto& pass : frame.passes()) cache_pass |= pass.name() == "cache resolve";
+  EXPECT_TRUE(cache_pass) << "no cache resolve pass in the frame";
+  v1::GetSessionRequest get;
+  get.set_session_id(created.session_id());
+  v1::SessionInfo info;
+  auto ctx = context();
+  ASSERT_TRUE(stub_->GetSession(ctx.get(), get, &info).ok());
+  ASSERT_TRUE(info.has_world_cache());
+  const v1::WorldCacheInfo& cache = info.world_cache();
+  std::printf("ao-cache session: %u of %u entries live, %llu bytes of the session's %llu\n",
+              cache.occupied(), cache.capacity(),
+              static_cast<unsigned long long>(cache.gpu_bytes()),
+              static_cast<unsigned long long>(info.gpu_bytes()));
+  EXPECT_EQ(cache.capacity(), WorldCacheParams{}.entries);
+  EXPECT_GT(cache.occupied(), 0u);
+  EXPECT_LE(cache.occupied(), cache.capacity());
+  EXPECT_EQ(cache.gpu_bytes(), world_cache_bytes(WorldCacheParams{}));
+  EXPECT_GE(info.gpu_bytes(), created.gpu_bytes() + cache.gpu_bytes());
 }
 
 // A session in the shadow-field direct mode: frames include the shadow field's update, its
