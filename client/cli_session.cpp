@@ -94,9 +94,13 @@ int load(Cli& cli) {
       request.set_direct_mode(v1::DIRECT_MODE_SHADOW_FIELD);
     } else if (direct == "ao") {
       request.set_direct_mode(v1::DIRECT_MODE_AMBIENT_OCCLUSION);
+    } else if (direct == "ao-traced") {
+      request.set_direct_mode(v1::DIRECT_MODE_AO_TRACED);
+    } else if (direct == "ao-cache") {
+      request.set_direct_mode(v1::DIRECT_MODE_AO_CACHE);
     } else {
-      return report(
-          invalid_argument("--direct must be shadow-rays, unshadowed, shadow-field or ao"));
+      return report(invalid_argument(
+          "--direct must be shadow-rays, unshadowed, shadow-field, ao, ao-traced or ao-cache"));
     }
   }
   for (const std::string& assignment : cli.flags.get_all("shadow-field")) {
@@ -317,7 +321,8 @@ void add_session_commands(std::vector<CommandSpec>& commands) {
   commands.push_back(
       {"load",
        "SCENE | --upload FILE.glb [--gi on|off] [--warmup N] [--field NAME=VALUE]... "
-       "[--direct shadow-rays|unshadowed|shadow-field|ao] [--shadow-field NAME=VALUE]...",
+       "[--direct shadow-rays|unshadowed|shadow-field|ao|ao-traced|ao-cache] "
+       "[--shadow-field NAME=VALUE]...",
        "create a session on a library scene or an uploaded .glb",
        {"upload", "gi", "warmup", "field", "direct", "shadow-field"},
        {},
