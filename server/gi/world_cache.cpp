@@ -112,9 +112,8 @@ Status WorldCache::clear() {
   });
 }
 
-std::vector<vk::Pass> WorldCache::begin_frame_passes(const glm::vec3& camera_position,
-                                                     float pixel_footprint,
-                                                     uint64_t geometry_moves) {
+vk::Pass WorldCache::begin_frame_pass(const glm::vec3& camera_position, float pixel_footprint,
+                                      uint64_t geometry_moves) {
   gpu::WorldCacheConstants c{};
   c.camera_position = camera_position;
   c.footprint_scale = pixel_footprint * params_.cell_pixels;
@@ -130,17 +129,7 @@ std::vector<vk::Pass> WorldCache::begin_frame_passes(const glm::vec3& camera_pos
   c.flags = geometry_moves != geometry_moves_ ? gpu::kWorldCacheCutHistory : 0u;
   c.ao_distance = params_.ao_distance;
   geometry_moves_ = geometry_moves;
-
-  vk::Pass counters;
-  counters.name = "cache counters";
-  counters.group = vk::PassGroup::kFrame;
-  counters.timed = false;
-  counters.writes = {&stats_};
-  counters.commands = [handle = stats_.handle()](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, handle, 0, VK_WHOLE_SIZE, 0);
-  };
-  return {vk::upload_pass("cache constants", vk::PassGroup::kFrame, constants_, c),
-          std::move(counters)};
+  return vk::upload_pass("cache constants", vk::PassGroup::kFrame, constants_, c);
 }
 
 vk::Pass WorldCache::resolve_pass() const {
@@ -160,7 +149,7 @@ vk::Pass WorldCache::resolve_pass() const {
 WorldCacheCounters WorldCache::counters() const {
   gpu::WorldCacheStats s{};
   std::memcpy(&s, stats_.mapped(), sizeof(s));
-  return {s.occupied, s.inserted, s.evicted, s.dropped, s.checksum_rejects};
+  return {s.inserted, s.evicted, s.dropped, s.checksum_rejects};
 }
 
 }  // namespace ddgi

@@ -61,13 +61,14 @@ Status validate(const WorldCacheParams& params);
 // Bytes of GPU memory a cache of these parameters holds.
 uint64_t world_cache_bytes(const WorldCacheParams& params);
 
-// The counters of the last finished frame that fed the cache.
+// The cache's counters since it was made (or cleared), as far as the GPU got: read while a frame
+// runs, they count part of it. 32-bit and wrapping: take differences.
 struct WorldCacheCounters {
-  uint32_t occupied = 0;          // live entries after its resolve
   uint32_t inserted = 0;          // points that got an entry
   uint32_t evicted = 0;           // entries freed, unsampled for max_age frames
   uint32_t dropped = 0;           // samples not cached: no free slot within max_probes
   uint32_t checksum_rejects = 0;  // probes that met the key held by another point
+  uint32_t live() const { return inserted - evicted; }
 };
 
 class WorldCache {
@@ -80,14 +81,13 @@ class WorldCache {
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   uint32_t capacity() const { return params_.entries; }
 
-  // The passes that open one frame's use of the cache: its constants (camera position, the
-  // footprint of a pixel per unit distance: 2 tan(yfov/2) / height) and cleared counters.
+  // The pass that opens one frame's use of the cache: its constants (camera position, the
+  // footprint of a pixel per unit distance: 2 tan(yfov/2) / height).
   // `geometry_moves`: GpuScene::move_count(); a change since the last frame cuts histories.
-  std::vector<vk::Pass> begin_frame_passes(const glm::vec3& camera_position, float pixel_footprint,
-                                           uint64_t geometry_moves);
+  vk::Pass begin_frame_pass(const glm::vec3& camera_position, float pixel_footprint,
+                            uint64_t geometry_moves);
   // The pass that folds the frame's samples in (after the sampling pass).
   vk::Pass resolve_pass() const;
-  // The counters of the last frame whose passes finished on the GPU.
   WorldCacheCounters counters() const;
   // Empties the table (a new scene, new parameters).
   Status clear();

@@ -304,8 +304,8 @@ std::vector<vk::Pass> Renderer::world_cache_passes(const FrameSettings& settings
                                                    const FrameTarget& target) const {
   // A pixel's footprint per unit distance: the image's height spans 2 tan(yfov/2) there.
   const float footprint = 2.0f * std::tan(settings.camera.yfov * 0.5f) / float(settings.height);
-  std::vector<vk::Pass> passes =
-      world_cache_->begin_frame_passes(settings.camera.position, footprint, scene_.move_count());
+  std::vector<vk::Pass> passes = {
+      world_cache_->begin_frame_pass(settings.camera.position, footprint, scene_.move_count())};
   vk::Pass samples;
   samples.name = "ao cache samples";
   samples.group = vk::PassGroup::kFrame;

@@ -522,7 +522,7 @@ void to_proto(const SessionState& session, uint64_t frames, uint64_t command_seq
     const WorldCacheCounters c = cache->counters();
     v1::WorldCacheInfo* info = out->mutable_world_cache();
     info->set_capacity(cache->capacity());
-    info->set_occupied(c.occupied);
+    info->set_occupied(c.live());
     info->set_inserted(c.inserted);
     info->set_evicted(c.evicted);
     info->set_dropped(c.dropped);

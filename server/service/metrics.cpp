@@ -85,6 +85,19 @@ std::string Metrics::prometheus_text() const {
                double(frames_dropped.load()));
   write_scalar(out, "ddgi_field_updates_total", "counter", "Irradiance field updates.",
                double(field_updates.load()));
+  write_scalar(out, "ddgi_world_cache_entries", "gauge",
+               "Live entries of the sessions' world caches.", double(world_cache_entries.load()));
+  write_scalar(out, "ddgi_world_cache_inserted_total", "counter",
+               "Points that got a world-cache entry.", double(world_cache_inserted.load()));
+  write_scalar(out, "ddgi_world_cache_evicted_total", "counter",
+               "World-cache entries freed after max_age frames unsampled.",
+               double(world_cache_evicted.load()));
+  write_scalar(out, "ddgi_world_cache_dropped_total", "counter",
+               "Samples a world cache could not keep: no free slot near their key.",
+               double(world_cache_dropped.load()));
+  write_scalar(out, "ddgi_world_cache_checksum_rejects_total", "counter",
+               "World-cache probes that met their key held by another point (kept apart).",
+               double(world_cache_checksum_rejects.load()));
   write_scalar(out, "ddgi_web_connections", "gauge", "Open WebSockets of the web front.",
                double(web_connections.load()));
   write_scalar(out, "ddgi_web_frames_sent_total", "counter", "Frames written to WebSockets.",

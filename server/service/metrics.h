@@ -42,6 +42,13 @@ class Metrics {
   std::atomic<uint64_t> frames_sent{0};
   std::atomic<uint64_t> frames_dropped{0};
   std::atomic<uint64_t> field_updates{0};
+  // The world caches of sessions in the ao-cache mode (docs/world-cache.md): live entries over
+  // all sessions, and what their frames did (reported after each finished frame).
+  std::atomic<int64_t> world_cache_entries{0};
+  std::atomic<uint64_t> world_cache_inserted{0};
+  std::atomic<uint64_t> world_cache_evicted{0};
+  std::atomic<uint64_t> world_cache_dropped{0};
+  std::atomic<uint64_t> world_cache_checksum_rejects{0};
   // The web front (web_gateway.h): open WebSockets, frames written to them and skipped for
   // browsers that read slower than frames come, text messages refused before any RPC.
   std::atomic<int64_t> web_connections{0};

@@ -64,6 +64,7 @@ Status Session::load(const SceneRequest& request) {
   if (scene->field()) env_.metrics->field_updates.fetch_add(request.warmup_updates);
   // The old scene (its renderer first) goes once the new one is on the GPU. View targets do
   // not depend on the scene and stay.
+  forget_world_cache();
   state_.scene = std::move(scene);
   for (auto& [view_id, view] : state_.views.all()) view.camera = state_.scene->default_camera();
   // The calibration runs beside the frames; its choice is adopted on this loop once it lands.

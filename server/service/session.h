@@ -160,6 +160,10 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   void stream_probes(const std::shared_ptr<FrameBatch>& batch);
   // Waits until the GPU is done with every frame in flight (reading nothing back).
   Status wait_for_frames_on_gpu();
+  // Adds what the scene's world cache did since the last report to the server's metrics (after
+  // a finished frame); forget_world_cache() takes its live entries off before the scene goes.
+  void report_world_cache();
+  void forget_world_cache();
 
   // Commands' pieces (session.cpp), on the loop thread.
   Status load(const SceneRequest& request);
@@ -186,8 +190,9 @@ class Session : public std::enable_shared_from_this<Session>, private SessionLoo
   SessionEnv env_;
   // Owned by the loop thread.
   SessionState state_;
-  std::deque<InFlightFrame> in_flight_;  // in submission order; after state_, freed before it
-  SubmitPacer pacer_;                    // when in_flight_ wants the next batch
+  std::deque<InFlightFrame> in_flight_;      // in submission order; after state_, freed before it
+  SubmitPacer pacer_;                        // when in_flight_ wants the next batch
+  WorldCacheCounters world_cache_reported_;  // the scene's cache's counts already in the metrics
   // Shared with RPC threads.
   mutable std::mutex summary_mutex_;
   v1::SessionSummary summary_;

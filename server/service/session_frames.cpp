@@ -76,6 +76,26 @@ void Session::after_iteration() {
   env_.context->collect_garbage();
 }
 
+void Session::report_world_cache() {
+  const WorldCache* cache = state_.scene ? state_.scene->world_cache() : nullptr;
+  if (!cache) return;
+  const WorldCacheCounters now = cache->counters();
+  const WorldCacheCounters& was = world_cache_reported_;
+  Metrics& m = *env_.metrics;
+  // Differences of wrapping 32-bit counts; live entries may fall (evictions), so signed.
+  m.world_cache_entries.fetch_add(int32_t(now.live() - was.live()));
+  m.world_cache_inserted.fetch_add(now.inserted - was.inserted);
+  m.world_cache_evicted.fetch_add(now.evicted - was.evicted);
+  m.world_cache_dropped.fetch_add(now.dropped - was.dropped);
+  m.world_cache_checksum_rejects.fetch_add(now.checksum_rejects - was.checksum_rejects);
+  world_cache_reported_ = now;
+}
+
+void Session::forget_world_cache() {
+  env_.metrics->world_cache_entries.fetch_sub(world_cache_reported_.live());
+  world_cache_reported_ = {};
+}
+
 void Session::tear_down(const Error& why, bool failed) {
   finish_frames();  // their waiters get their frames before the rest learn of the close
   state_.views.close_all(why, failed);
@@ -84,6 +104,7 @@ void Session::tear_down(const Error& why, bool failed) {
     stream->finish(failed ? to_grpc(why) : grpc::Status::OK);
   }
   state_.probe_streams.clear();
+  forget_world_cache();
   state_.scene.reset();
   env_.context->collect_garbage();
   env_.metrics->sessions.fetch_sub(1);
@@ -226,6 +247,7 @@ SubmitPacer::Millis Session::deliver(InFlightFrame& frame) {
   record.gi_ms = batch.gi_ms;
   record.rendered_unix_us = unix_micros();
   env_.metrics->frames_rendered.fetch_add(1);
+  report_world_cache();
   env_.metrics->frame_seconds.observe(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.start).count());
   const gpu::Yuv420Layout& planes = result->yuv420_layout;

@@ -267,10 +267,10 @@ Status render_frames(const RenderJob& job, vk::Context& context, const Scene& sc
   if (const WorldCache* cache = renderer->world_cache()) {
     const WorldCacheCounters c = cache->counters();
     std::printf(
-        "world cache (last frame): %u of %u entries live (%.1f%%), %u inserted, %u evicted, "
-        "%u samples dropped, %u checksum rejects, %.1f MiB\n",
-        c.occupied, cache->capacity(), 100.0 * c.occupied / cache->capacity(), c.inserted,
-        c.evicted, c.dropped, c.checksum_rejects, double(cache->gpu_bytes()) / (1 << 20));
+        "world cache: %u of %u entries live (%.1f%%); since it was made %u inserted, %u evicted, "
+        "%u samples dropped, %u checksum rejects; %.1f MiB\n",
+        c.live(), cache->capacity(), 100.0 * c.live() / cache->capacity(), c.inserted, c.evicted,
+        c.dropped, c.checksum_rejects, double(cache->gpu_bytes()) / (1 << 20));
   }
   return ok_status();
 }

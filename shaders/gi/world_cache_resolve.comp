@@ -2,8 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The world cache's resolve pass (docs/world-cache.md), one invocation per slot: folds the
 // frame's pending samples into the entry's mean (history weight capped at max_samples, cut to
-// follow_samples after a geometry change), frees entries untouched for max_age frames, and
-// counts the live ones.
+// follow_samples after a geometry change) and frees entries untouched for max_age frames.
 #define DDGI_WORLD_CACHE_SET 0
 #include "common/world_cache.glsl"
 #include "common/dispatch.glsl"
@@ -33,5 +32,4 @@ void main() {
     e.samples = history;
   }
   cache_table[slot] = e;
-  atomicAdd(cache_stats.occupied, 1u);
 }

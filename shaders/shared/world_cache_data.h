@@ -37,9 +37,11 @@ struct WorldCacheEntry {
   uint pad0;
 };
 
-// Counters of one frame (cleared before its update pass). scalar layout, 32 bytes.
+// Counters since the cache was made (cumulative, so that a frame still running never clears what
+// the host reads of an earlier one; live entries = inserted - evicted). 32-bit: the host reads
+// differences, which stay right across a wrap. scalar layout, 32 bytes.
 struct WorldCacheStats {
-  uint occupied;          // live entries after the frame's resolve
+  uint pad3;
   uint inserted;          // points that got a new entry
   uint evicted;           // entries freed: untouched for max_age frames
   uint dropped;           // samples not cached: no free slot within max_probes of the key
@@ -88,7 +90,6 @@ static_assert(offsetof(WorldCacheEntry, pending_count) == 20);
 static_assert(offsetof(WorldCacheEntry, last_frame) == 24);
 
 static_assert(sizeof(WorldCacheStats) == 32);
-static_assert(offsetof(WorldCacheStats, occupied) == 0);
 static_assert(offsetof(WorldCacheStats, inserted) == 4);
 static_assert(offsetof(WorldCacheStats, evicted) == 8);
 static_assert(offsetof(WorldCacheStats, dropped) == 12);

@@ -456,6 +456,20 @@ TEST_F(E2eTest, AoCacheSessionReportsItsCache) {
   EXPECT_LE(cache.occupied(), cache.capacity());
   EXPECT_EQ(cache.gpu_bytes(), world_cache_bytes(WorldCacheParams{}));
   EXPECT_GE(info.gpu_bytes(), created.gpu_bytes() + cache.gpu_bytes());
+  // The metrics count the same live entries (every frame was read back before GetSession), and
+  // take them off when the session closes.
+  EXPECT_EQ(server().metrics().world_cache_entries.load(), int64_t(cache.occupied()));
+  EXPECT_EQ(server().metrics().world_cache_inserted.load(), uint64_t(cache.inserted()));
+  v1::CloseSessionRequest close;
+  close.set_session_id(created.session_id());
+  v1::CloseSessionReply closed;
+  auto close_ctx = context();
+  ASSERT_TRUE(stub_->CloseSession(close_ctx.get(), close, &closed).ok());
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (server().metrics().sessions.load() != 0 && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(server().metrics().world_cache_entries.load(), 0);
 }
 
 // A session in the shadow-field direct mode: frames include the shadow field's update, its
