@@ -35,7 +35,7 @@ double mean_abs_difference(const std::vector<float>& a, const std::vector<float>
 }
 
 class WorldCacheTest : public GpuTest {
- protected:
+ public:
   // `scene` lit by a white sky alone (its lights removed), with a renderer and no GI.
   void make(Scene scene, const WorldCacheParams& params = {}) {
     scene_ = std::move(scene);
@@ -77,44 +77,34 @@ class WorldCacheTest : public GpuTest {
 
 // After 64 frames (one AO sample per pixel each), the cache's AO is within 0.03 of AO traced
 // with 1024 rays per pixel, and far closer than one frame's own traced sample (the control:
-// what the cache replaces). The reference is not trivial: the floor by the cube is dark.
-TEST_F(WorldCacheTest, CacheAoConvergesToTracedAoOnBoxOnFloor) {
-  make(load_repo_scene("box_on_floor.gltf"));
-  const std::vector<float> reference = frame(DirectMode::kAoTraced, 1024);
-  const std::vector<float> one_ray = frame(DirectMode::kAoTraced, 1);
-  const std::vector<float> cached = cache_frames(64);
+// what the cache replaces). The reference is not trivial: some surfaces are dark.
+void expect_converges(WorldCacheTest& test, const std::string& scene_file) {
+  test.make(load_repo_scene(scene_file));
+  const std::vector<float> reference = test.frame(DirectMode::kAoTraced, 1024);
+  const std::vector<float> one_ray = test.frame(DirectMode::kAoTraced, 1);
+  const std::vector<float> cached = test.cache_frames(64);
   const ValueSpread spread = value_spread(reference, 4, 3);
   const double cache_error = mean_abs_difference(cached, reference);
   const double one_ray_error = mean_abs_difference(one_ray, reference);
-  std::printf(
-      "box_on_floor AO: cache %.4f, one traced ray %.4f (tolerance 0.03); reference "
-      "%.3f .. %.3f\n",
-      cache_error, one_ray_error, spread.min, spread.max);
+  std::printf("%s AO: cache %.4f, one traced ray %.4f (tolerance 0.03); reference %.3f .. %.3f\n",
+              scene_file.c_str(), cache_error, one_ray_error, spread.min, spread.max);
   EXPECT_LT(cache_error, 0.03);
   EXPECT_LT(cache_error, 0.5 * one_ray_error);
   EXPECT_LT(spread.min, 0.5 * spread.max);
 }
 
+// Measured: 0.0059 against one ray's 0.0560; the floor by the cube is dark (0.376).
+TEST_F(WorldCacheTest, CacheAoConvergesToTracedAoOnBoxOnFloor) {
+  expect_converges(*this, "box_on_floor.gltf");
+}
+
 // A real scene made by others (LightsPunctualTest: a cube on a large ground plane, open to the
-// sky), at the sidecar's camera: the same bounds as box_on_floor.
+// sky), at the sidecar's camera. Measured: 0.0105 against one ray's 0.1927.
 TEST_F(WorldCacheTest, CacheAoConvergesToTracedAoOnARealScene) {
   if (!std::filesystem::exists(std::string(DDGI_SOURCE_DIR) + "/../shared/scenes")) {
     GTEST_SKIP() << "no ../shared/scenes";
   }
-  make(load_repo_scene("lights_punctual.ddgi.json"));
-  const std::vector<float> reference = frame(DirectMode::kAoTraced, 1024);
-  const std::vector<float> one_ray = frame(DirectMode::kAoTraced, 1);
-  const std::vector<float> cached = cache_frames(64);
-  const ValueSpread spread = value_spread(reference, 4, 3);
-  const double cache_error = mean_abs_difference(cached, reference);
-  const double one_ray_error = mean_abs_difference(one_ray, reference);
-  std::printf(
-      "lights_punctual AO: cache %.4f, one traced ray %.4f (tolerance 0.03); reference "
-      "%.3f .. %.3f\n",
-      cache_error, one_ray_error, spread.min, spread.max);
-  EXPECT_LT(cache_error, 0.03);
-  EXPECT_LT(cache_error, 0.5 * one_ray_error);
-  EXPECT_LT(spread.min, 0.5 * spread.max);
+  expect_converges(*this, "lights_punctual.ddgi.json");
 }
 
 // Under a still camera the warmed-up cache barely changes from frame to frame, where its second
