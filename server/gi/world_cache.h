@@ -89,12 +89,11 @@ class WorldCache {
   // The pass that folds the frame's samples in (after the sampling pass).
   vk::Pass resolve_pass() const;
   WorldCacheCounters counters() const;
-  // Empties the table (a new scene, new parameters).
-  Status clear();
 
  private:
   explicit WorldCache(vk::Context& context) : context_(context) {}
   Status create_resources();
+  Status clear();  // empties the table and zeroes the counters
 
   vk::Context& context_;
   WorldCacheParams params_;

@@ -41,7 +41,6 @@ struct WorldCacheEntry {
 // the host reads of an earlier one; live entries = inserted - evicted). 32-bit: the host reads
 // differences, which stay right across a wrap. scalar layout, 32 bytes.
 struct WorldCacheStats {
-  uint pad3;
   uint inserted;          // points that got a new entry
   uint evicted;           // entries freed: untouched for max_age frames
   uint dropped;           // samples not cached: no free slot within max_probes of the key
@@ -49,6 +48,7 @@ struct WorldCacheStats {
   uint pad0;
   uint pad1;
   uint pad2;
+  uint pad3;
 };
 
 // What every cache kernel reads. scalar layout, 64 bytes.
@@ -90,10 +90,10 @@ static_assert(offsetof(WorldCacheEntry, pending_count) == 20);
 static_assert(offsetof(WorldCacheEntry, last_frame) == 24);
 
 static_assert(sizeof(WorldCacheStats) == 32);
-static_assert(offsetof(WorldCacheStats, inserted) == 4);
-static_assert(offsetof(WorldCacheStats, evicted) == 8);
-static_assert(offsetof(WorldCacheStats, dropped) == 12);
-static_assert(offsetof(WorldCacheStats, checksum_rejects) == 16);
+static_assert(offsetof(WorldCacheStats, inserted) == 0);
+static_assert(offsetof(WorldCacheStats, evicted) == 4);
+static_assert(offsetof(WorldCacheStats, dropped) == 8);
+static_assert(offsetof(WorldCacheStats, checksum_rejects) == 12);
 
 static_assert(sizeof(WorldCacheConstants) == 64);
 static_assert(offsetof(WorldCacheConstants, camera_position) == 0);
