@@ -377,12 +377,9 @@ Status run(int argc, char** argv) {
     // Sessions have ended with the loss as their status; the supervisor restarts the server.
     return unavailable("the GPU device was lost; exiting so that the server is restarted");
   }
-  const uint32_t messages = context->validation_message_count();
+  Status validation = context->no_validation_messages();
   context.reset();
-  if (messages > 0) {
-    return internal_error(std::to_string(messages) + " Vulkan validation messages (see above)");
-  }
-  return ok_status();
+  return validation;
 }
 
 }  // namespace

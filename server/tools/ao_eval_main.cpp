@@ -206,11 +206,7 @@ Status run(int argc, char** argv) {
   std::printf("| scene | mode | GPU ms per frame | mean error | worst 16x16 tile | MiB |\n");
   std::printf("| --- | --- | ---: | ---: | ---: | ---: |\n");
   for (const std::string& path : job.scenes) DDGI_TRY(measure_scene(job, *context, path));
-  if (context->validation_message_count() > 0) {
-    return internal_error(std::to_string(context->validation_message_count()) +
-                          " Vulkan validation messages (see above)");
-  }
-  return ok_status();
+  return context->no_validation_messages();
 }
 
 }  // namespace

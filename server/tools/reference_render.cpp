@@ -75,11 +75,7 @@ Status render_reference(vk::Context& context, GpuScene& scene, vk::TraceBackend 
               vk::backend_name(backend), context.caps().device_name.c_str());
   std::printf("%.3f s, %.1f ms per sample of every pixel\n", elapsed,
               elapsed * 1e3 / image.samples);
-  if (context.validation_message_count() > 0) {
-    return internal_error(std::to_string(context.validation_message_count()) +
-                          " Vulkan validation messages (see above)");
-  }
-  return ok_status();
+  return context.no_validation_messages();
 }
 
 Result<ReferencePair> reference_pair(vk::Context& context, GpuScene& scene,

@@ -301,11 +301,7 @@ Status run(int argc, char** argv) {
   } else {
     DDGI_TRY(render_frames(job, *context, scene));
   }
-  if (context->validation_message_count() > 0) {
-    return internal_error(std::to_string(context->validation_message_count()) +
-                          " Vulkan validation messages (see above)");
-  }
-  return ok_status();
+  return context->no_validation_messages();
 }
 
 }  // namespace

@@ -654,4 +654,10 @@ Result<uint32_t> Context::find_memory_type(uint32_t type_bits, VkMemoryPropertyF
   return internal_error("no memory type with the required properties");
 }
 
+Status Context::no_validation_messages() const {
+  const uint32_t messages = validation_message_count();
+  if (messages == 0) return ok_status();
+  return internal_error(std::to_string(messages) + " Vulkan validation messages (see above)");
+}
+
 }  // namespace ddgi::vk

@@ -177,6 +177,9 @@ class Context {
 
   // Validation messages (warnings and errors) seen since creation; tests require zero.
   uint32_t validation_message_count() const { return validation_messages_.load(); }
+  // INTERNAL naming the count when any validation message was reported (how tools and the
+  // server end a run that drew one); OK otherwise.
+  Status no_validation_messages() const;
   // True when the validation layer is on and its messages reach the counter above.
   bool validation_enabled() const { return validation_enabled_; }
 

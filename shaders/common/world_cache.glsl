@@ -92,6 +92,15 @@ CachePoint cache_point(uint level, ivec3 cell, uint octant, uint bucket) {
   return p;
 }
 
+// The 216 candidates around a cell `home` of `level`: the 8 points of it and of each of its 26
+// neighbours, numbered i = ((dz + 1) * 9 + (dy + 1) * 3 + dx + 1) * 8 + octant.
+const uint kCacheCandidates = 216u;
+CachePoint cache_candidate(uint level, ivec3 home, uint i, uint bucket) {
+  const uint cell = i / 8u;
+  const ivec3 offset = ivec3(int(cell % 3u), int((cell / 3u) % 3u), int(cell / 9u)) - 1;
+  return cache_point(level, home + offset, i % 8u, bucket);
+}
+
 // --- The table ------------------------------------------------------------------------------
 // The slot holding `p`, or -1. Probes every slot of the window (no early stop at an empty one:
 // eviction leaves holes in a run).
@@ -147,26 +156,20 @@ CachePoint cache_pick_point(vec3 x, uint level, uint bucket, float u) {
   const ivec3 home = ivec3(floor(x / size));
   CachePoint best[3];
   float d2[3] = float[3](1e38, 1e38, 1e38);
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        for (uint q = 0u; q < 8u; ++q) {
-          const CachePoint p = cache_point(level, home + ivec3(dx, dy, dz), q, bucket);
-          const vec3 e = p.position - x;
-          const float d = dot(e, e);
-          if (d >= d2[2]) continue;
-          if (d < d2[0]) {
-            best[2] = best[1], d2[2] = d2[1];
-            best[1] = best[0], d2[1] = d2[0];
-            best[0] = p, d2[0] = d;
-          } else if (d < d2[1]) {
-            best[2] = best[1], d2[2] = d2[1];
-            best[1] = p, d2[1] = d;
-          } else {
-            best[2] = p, d2[2] = d;
-          }
-        }
-      }
+  for (uint i = 0u; i < kCacheCandidates; ++i) {
+    const CachePoint p = cache_candidate(level, home, i, bucket);
+    const vec3 e = p.position - x;
+    const float d = dot(e, e);
+    if (d >= d2[2]) continue;
+    if (d < d2[0]) {
+      best[2] = best[1], d2[2] = d2[1];
+      best[1] = best[0], d2[1] = d2[0];
+      best[0] = p, d2[0] = d;
+    } else if (d < d2[1]) {
+      best[2] = best[1], d2[2] = d2[1];
+      best[1] = p, d2[1] = d;
+    } else {
+      best[2] = p, d2[2] = d;
     }
   }
   const vec3 inverse = 1.0 / max(vec3(d2[0], d2[1], d2[2]), vec3(1e-30 * size * size));
@@ -184,19 +187,13 @@ vec2 cache_shepard(vec3 x, uint level, uint bucket) {
   const float r = cache_cell_size(level);
   const ivec3 home = ivec3(floor(x / r));
   vec2 sum = vec2(0.0);
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        for (uint q = 0u; q < 8u; ++q) {
-          const CachePoint p = cache_point(level, home + ivec3(dx, dy, dz), q, bucket);
-          const float w = r - length(p.position - x);
-          if (w <= 0.0) continue;
-          const int slot = cache_find(p);
-          if (slot < 0 || !(cache_table[slot].samples > 0.0)) continue;
-          sum += vec2(w * cache_table[slot].value, w);
-        }
-      }
-    }
+  for (uint i = 0u; i < kCacheCandidates; ++i) {
+    const CachePoint p = cache_candidate(level, home, i, bucket);
+    const float w = r - length(p.position - x);
+    if (w <= 0.0) continue;
+    const int slot = cache_find(p);
+    if (slot < 0 || !(cache_table[slot].samples > 0.0)) continue;
+    sum += vec2(w * cache_table[slot].value, w);
   }
   return sum;
 }
@@ -235,18 +232,12 @@ vec3 cache_point_colour(vec3 x, vec3 normal, float distance) {
   const ivec3 home = ivec3(floor(x / r));
   float best = 0.0;
   uint key = 0u;
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        for (uint q = 0u; q < 8u; ++q) {
-          const CachePoint p = cache_point(level, home + ivec3(dx, dy, dz), q, bucket);
-          const float w = r - length(p.position - x);
-          if (w <= best || cache_find(p) < 0) continue;
-          best = w;
-          key = p.key;
-        }
-      }
-    }
+  for (uint i = 0u; i < kCacheCandidates; ++i) {
+    const CachePoint p = cache_candidate(level, home, i, bucket);
+    const float w = r - length(p.position - x);
+    if (w <= best || cache_find(p) < 0) continue;
+    best = w;
+    key = p.key;
   }
   if (key == 0u) return vec3(0.05);
   const uint h = pcg_hash(key);
